@@ -1,0 +1,78 @@
+#include "sinew/material/catalog.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <set>
+
+#include "sinew/core/error.hpp"
+
+namespace sinew {
+
+MaterialCatalog::MaterialCatalog() {
+  register_paper000_materials(families_);
+  register_table1_materials(families_);
+  std::set<std::string> seen;
+  for (const auto& f : families_) {
+    if (!seen.insert(f.name).second) throw Error("material registered twice", f.name);
+  }
+}
+
+const MaterialCatalog& MaterialCatalog::instance() {
+  static const MaterialCatalog catalog;
+  return catalog;
+}
+
+const MaterialInfo& MaterialCatalog::find(const std::string& name) const {
+  for (const auto& f : families_) {
+    if (f.name == name) return f;
+  }
+  std::string names;
+  for (const auto& f : families_) names += (names.empty() ? "" : ", ") + f.name;
+  throw Error(fmt::format("unknown material '{}' (known: {})", name, names), "material");
+}
+
+MaterialParameters MaterialCatalog::complete(const std::string& name,
+                                             const MaterialParameters& given) const {
+  const MaterialInfo& info = find(name);
+  const std::string where = fmt::format("material '{}'", name);
+  MaterialParameters out;
+  for (const auto& p : info.parameters) out.values[p.key] = p.default_value;
+  for (const auto& f : info.functions) out.functions[f.key] = f.default_expression;
+  for (const auto& [key, value] : given.values) {
+    if (!out.values.count(key)) {
+      std::string keys;
+      for (const auto& p : info.parameters) keys += (keys.empty() ? "" : ", ") + p.key;
+      throw Error(fmt::format("unknown parameter '{}' (expected one of: {})", key,
+                              keys.empty() ? "none" : keys),
+                  where);
+    }
+    if (!std::isfinite(value)) {
+      throw Error(fmt::format("parameter '{}' is not a finite number", key), where);
+    }
+    out.values[key] = value;
+  }
+  for (const auto& [key, expr] : given.functions) {
+    if (!out.functions.count(key)) {
+      std::string keys;
+      for (const auto& f : info.functions) keys += (keys.empty() ? "" : ", ") + f.key;
+      throw Error(fmt::format("unknown function '{}' (expected one of: {})", key,
+                              keys.empty() ? "none" : keys),
+                  where);
+    }
+    out.functions[key] = expr;
+  }
+  return out;
+}
+
+std::unique_ptr<Material> MaterialCatalog::make(const std::string& name,
+                                                const MaterialParameters& given) const {
+  const MaterialInfo& info = find(name);
+  const MaterialParameters params = complete(name, given);
+  try {
+    return info.make(params);
+  } catch (const Error& e) {
+    throw e.within(fmt::format("material '{}'", name));
+  }
+}
+
+}  // namespace sinew
