@@ -9,8 +9,9 @@ namespace sinew {
 // Defined for every F; lambda_Lame = lambda, mu_Lame = mu.
 class LinearCorotational final : public StretchMaterial {
  public:
-  LinearCorotational(double lambda, double mu) : lambda_(lambda), mu_(mu) {}
-  std::string name() const override { return "linear_corotational"; }
+  LinearCorotational(double lambda, double mu, std::string name = "linear_corotational")
+      : lambda_(lambda), mu_(mu), name_(std::move(name)) {}
+  std::string name() const override { return name_; }
 
   double psi_stretch(const Vec3& s) const override;
   Vec3 grad_stretch(const Vec3& s) const override;
@@ -21,6 +22,7 @@ class LinearCorotational final : public StretchMaterial {
 
  private:
   double lambda_, mu_;
+  std::string name_;
 };
 
 }  // namespace sinew
