@@ -38,6 +38,18 @@ Mat9 Eigensystem::projected(Projection mode, double floor) const {
   return vectors * v.asDiagonal() * vectors.transpose();
 }
 
+Eigen::SelfAdjointEigenSolver<Mat3> symmetric_eigen3(const Mat3& A) {
+  // Closed form first (trigonometric cubic + cross products, ~100 ns). Its eigenvectors lose
+  // accuracy when two eigenvalues nearly coincide; there the iterative solver (~300 ns) is
+  // exact to rounding, so use it only then.
+  Eigen::SelfAdjointEigenSolver<Mat3> es;
+  es.computeDirect(A);
+  const Vec3& v = es.eigenvalues();  // ascending
+  const double scale = std::max(v.cwiseAbs().maxCoeff(), 1e-300);
+  if (std::min(v(1) - v(0), v(2) - v(1)) < 1e-3 * scale) es.compute(A);
+  return es;
+}
+
 // ---------------------------------------------------------------- public F view
 
 bool Material::in_domain(const Mat3& F) const {
@@ -142,9 +154,7 @@ Mat9 isotropic_eigenvectors(const SignedSvd& s, const Mat3& Q) {
 
 Eigensystem Material::stretch_eigensystem(const SignedSvd& s, const Vec3& p,
                                           const Mat3& h) const {
-  // Closed-form 3x3 symmetric eigensolver (trigonometric cubic + cross products).
-  Eigen::SelfAdjointEigenSolver<Mat3> block;
-  block.computeDirect(h);
+  const auto block = symmetric_eigen3(h);
   Vec3 twist, flip;
   pair_eigenvalues(s.sigma, p, h, twist, flip);
   Eigensystem es;
@@ -169,7 +179,10 @@ Vec3 InvariantMaterial::grad_stretch(const Vec3& s) const {
 }
 
 Mat3 InvariantMaterial::hess_stretch(const Vec3& s) const {
-  const Derivatives d = invariant_derivatives(s.squaredNorm(), s.prod());
+  return stretch_block(invariant_derivatives(s.squaredNorm(), s.prod()), s);
+}
+
+Mat3 InvariantMaterial::stretch_block(const Derivatives& d, const Vec3& s) {
   const Vec3 g = stretch_cofactor(s);
   Mat3 volume;  // d^2 J / d sigma^2
   volume << 0.0, s(2), s(1),
@@ -182,11 +195,42 @@ Mat3 InvariantMaterial::hess_stretch(const Vec3& s) const {
 
 void InvariantMaterial::pair_eigenvalues(const Vec3& s, const Vec3&, const Mat3&, Vec3& twist,
                                          Vec3& flip) const {
-  const Derivatives d = invariant_derivatives(s.squaredNorm(), s.prod());
+  pair_eigenvalues_from(invariant_derivatives(s.squaredNorm(), s.prod()), s, twist, flip);
+}
+
+void InvariantMaterial::pair_eigenvalues_from(const Derivatives& d, const Vec3& s, Vec3& twist,
+                                              Vec3& flip) {
   for (int k = 0; k < 3; ++k) {
     twist(k) = 2.0 * d.dI + d.dJ * s(k);
     flip(k) = 2.0 * d.dI - d.dJ * s(k);
   }
+}
+
+Eigensystem InvariantMaterial::eigensystem_impl(const Mat3& F) const {
+  const SignedSvd s = signed_svd(F);
+  return invariant_eigensystem(invariant_derivatives(F.squaredNorm(), F.determinant()), s);
+}
+
+Eigensystem InvariantMaterial::invariant_eigensystem(const Derivatives& d, const SignedSvd& s) {
+  const auto block = symmetric_eigen3(stretch_block(d, s.sigma));
+  Vec3 twist, flip;
+  pair_eigenvalues_from(d, s.sigma, twist, flip);
+  Eigensystem es;
+  es.values << block.eigenvalues(), twist, flip;
+  es.vectors = isotropic_eigenvectors(s, block.eigenvectors());
+  return es;
+}
+
+Evaluation InvariantMaterial::evaluate_impl(const Mat3& F, Projection mode) const {
+  // One set of invariant derivatives serves Psi, P and the Hessian.
+  const Derivatives d = invariant_derivatives(F.squaredNorm(), F.determinant());
+  Evaluation e;
+  e.psi = d.psi;
+  e.P = 2.0 * d.dI * F + d.dJ * cofactor(F);
+  e.hessian = mode == Projection::None
+                  ? hessian_from(d, F)
+                  : invariant_eigensystem(d, signed_svd(F)).projected(mode, projection_floor());
+  return e;
 }
 
 double InvariantMaterial::psi_impl(const Mat3& F) const {
@@ -199,7 +243,10 @@ Mat3 InvariantMaterial::pk1_impl(const Mat3& F) const {
 }
 
 Mat9 InvariantMaterial::hessian_impl(const Mat3& F) const {
-  const Derivatives d = invariant_derivatives(F.squaredNorm(), F.determinant());
+  return hessian_from(invariant_derivatives(F.squaredNorm(), F.determinant()), F);
+}
+
+Mat9 InvariantMaterial::hessian_from(const Derivatives& d, const Mat3& F) {
   const Vec9 f = vec(F);
   const Vec9 g = vec(cofactor(F));
   return 2.0 * d.dI * Mat9::Identity() + 4.0 * d.dII * f * f.transpose() +

@@ -9,6 +9,7 @@
 // Stretch-based materials (StretchMaterial) implement the stretch view and get the F view
 // from the analytic eigensystem; invariant-based materials (InvariantMaterial) implement
 // Psi(I_C, J) and get both views from the invariant derivatives.
+#include <Eigen/Eigenvalues>
 #include <string>
 
 #include "sinew/core/svd.hpp"
@@ -94,6 +95,10 @@ class Material {
   Eigensystem stretch_eigensystem(const SignedSvd& svd, const Vec3& p, const Mat3& h) const;
 };
 
+// Eigendecomposition of a symmetric 3x3 block (ascending eigenvalues), accurate also when
+// eigenvalues (nearly) coincide.
+Eigen::SelfAdjointEigenSolver<Mat3> symmetric_eigen3(const Mat3& A);
+
 // Builds the 9 eigenvectors of an isotropic energy's Hessian from U, V and the 3x3 block's
 // eigenvectors (columns of Q). Shared by the generic and the closed-form eigensystems.
 Mat9 isotropic_eigenvectors(const SignedSvd& svd, const Mat3& Q);
@@ -124,6 +129,15 @@ class InvariantMaterial : public Material {
   Mat3 pk1_impl(const Mat3& F) const override;
   // Hessian = 2 Psi_I I + 4 Psi_II f f^T + 2 Psi_IJ (f g^T + g f^T) + Psi_JJ g g^T + Psi_J H
   Mat9 hessian_impl(const Mat3& F) const override;
+  Eigensystem eigensystem_impl(const Mat3& F) const override;
+  Evaluation evaluate_impl(const Mat3& F, Projection mode) const override;
+
+  // Building blocks from one set of derivatives (for subclasses with closed forms).
+  static Mat3 stretch_block(const Derivatives& d, const Vec3& sigma);  // 3x3 block in sigma
+  static void pair_eigenvalues_from(const Derivatives& d, const Vec3& sigma, Vec3& twist,
+                                    Vec3& flip);
+  static Eigensystem invariant_eigensystem(const Derivatives& d, const SignedSvd& svd);
+  static Mat9 hessian_from(const Derivatives& d, const Mat3& F);
 };
 
 }  // namespace sinew
