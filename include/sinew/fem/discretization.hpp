@@ -1,0 +1,50 @@
+#pragma once
+// Precomputed element kinematics of a mesh: at each quadrature point the rest-space
+// shape-function gradients dN/dX and the quadrature weight times the rest Jacobian, so that
+// F = x_e D and dF/dx is a fixed linear map (paper 001 §3.2).
+#include <Eigen/Core>
+#include <vector>
+
+#include "sinew/core/types.hpp"
+#include "sinew/mesh/volume_mesh.hpp"
+
+namespace sinew {
+
+class Discretization {
+ public:
+  explicit Discretization(VolumeMesh mesh, const std::string& source = "mesh");
+
+  const VolumeMesh& mesh() const { return mesh_; }
+  int nodes() const { return nodes_; }
+  int quadrature_points() const { return qpoints_; }
+  Eigen::Index num_elements() const { return mesh_.num_elements(); }
+  Eigen::Index num_dofs() const { return 3 * mesh_.num_vertices(); }
+
+  // dN/dX (nodes x 3) and weight (w * det dX/dxi) of quadrature point q of element e.
+  const Eigen::MatrixX3d& gradients(Eigen::Index e, int q) const { return dN_dX_[e * qpoints_ + q]; }
+  double weight(Eigen::Index e, int q) const { return weight_[e * qpoints_ + q]; }
+  double rest_volume(Eigen::Index e) const;
+
+  // Node positions of element e from the DOF vector x (3 x nodes).
+  Eigen::Matrix3Xd element_positions(Eigen::Index e, const Eigen::VectorXd& x) const;
+  // F = x_e dN/dX.
+  Mat3 deformation_gradient(Eigen::Index e, int q, const Eigen::VectorXd& x) const;
+
+  // Elements grouped so that no two elements of a group share a vertex: scattering one
+  // group's element contributions in parallel is race-free and deterministic.
+  const std::vector<std::vector<Eigen::Index>>& color_groups() const { return colors_; }
+
+ private:
+  VolumeMesh mesh_;
+  int nodes_ = 0;
+  int qpoints_ = 0;
+  std::vector<Eigen::MatrixX3d> dN_dX_;
+  std::vector<double> weight_;
+  std::vector<std::vector<Eigen::Index>> colors_;
+};
+
+// Element gradient contribution of one quadrature point: w * vec-scatter of P D^T (3 x nodes).
+// Element Hessian contribution: K(3a+i, 3b+j) += w sum_kl D(a,k) H(3k+i, 3l+j) D(b,l).
+void add_element_hessian(const Eigen::MatrixX3d& D, const Mat9& H, double w, Eigen::MatrixXd& K);
+
+}  // namespace sinew

@@ -1,0 +1,30 @@
+#pragma once
+// A term of the total energy (PolyFEM's "forms"): elastic, gravity, inertia, contact,
+// constraints. Each exposes value, gradient and a PSD Hessian; Newton knows only the sum.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "sinew/fem/block_hessian.hpp"
+
+namespace sinew {
+
+class Form {
+ public:
+  virtual ~Form() = default;
+  virtual std::string name() const = 0;
+
+  virtual double value(const Eigen::VectorXd& x) const = 0;
+  // g += dE/dx
+  virtual void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const = 0;
+  // H += d2E/dx2 (projected to PSD where the term is not convex)
+  virtual void add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const = 0;
+
+  // Vertex groups the Hessian couples (for the sparsity pattern).
+  virtual void couplings(std::vector<std::vector<int>>& /*cliques*/) const {}
+  // False where the energy is undefined at x (e.g. an inverted element of a log-based
+  // material): the line search treats such a step as infinitely costly.
+  virtual bool is_valid(const Eigen::VectorXd& /*x*/) const { return true; }
+};
+
+}  // namespace sinew

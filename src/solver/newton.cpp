@@ -1,0 +1,103 @@
+#include "sinew/solver/newton.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace sinew {
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& linear,
+                          const NewtonSettings& s,
+                          const std::function<void(const NewtonIterate&)>& progress) {
+  NewtonReport report;
+  if (!problem.is_valid(x)) {
+    report.failure = "initial state is outside the energy's domain (e.g. inverted elements of a "
+                     "log-based material)";
+    return report;
+  }
+  auto t0 = std::chrono::steady_clock::now();
+  Eigen::VectorXd g = problem.gradient(x);
+  double energy = problem.value(x);
+  report.assembly_seconds += seconds_since(t0);
+  double residual = g.norm();
+  report.initial_residual = residual;
+  double eta = s.linear_tolerance, previous_residual = residual;
+  Eigen::VectorXd d, trial;
+  for (int it = 0;; ++it) {
+    report.iterations = it;
+    report.residual = residual;
+    report.energy = energy;
+    const bool abs_ok = residual < s.absolute_tolerance;
+    const bool rel_ok = s.relative_tolerance > 0.0 && residual <= s.relative_tolerance * report.initial_residual;
+    if (abs_ok || rel_ok) {
+      report.converged = true;
+      return report;
+    }
+    if (it >= s.max_iterations) {
+      report.failure = fmt::format("no convergence in {} Newton iterations (residual {:.3e})", it, residual);
+      return report;
+    }
+    t0 = std::chrono::steady_clock::now();
+    const Eigen::SparseMatrix<double>& H = problem.hessian(x);
+    report.assembly_seconds += seconds_since(t0);
+
+    if (s.eisenstat_walker && it > 0) {
+      // Eisenstat-Walker choice 2 with the usual safeguard.
+      const double ratio = residual / previous_residual;
+      eta = std::clamp(std::max(0.9 * ratio * ratio, 0.9 * eta * eta), 1e-8, 0.5);
+    }
+    t0 = std::chrono::steady_clock::now();
+    const LinearSolveReport lin = linear.solve(H, -g, d, eta);
+    report.solve_seconds += seconds_since(t0);
+    report.linear_iterations += lin.iterations;
+
+    // A direction that does not descend (failed or inexact solve) falls back to -g.
+    double slope = g.dot(d);
+    if (!d.allFinite() || !(slope < 0.0)) {
+      d = -g;
+      slope = -g.squaredNorm();
+    }
+    t0 = std::chrono::steady_clock::now();
+    double alpha = 1.0, trial_energy = 0.0;
+    bool accepted = false;
+    Eigen::VectorXd trial_g;
+    for (int ls = 0; ls < s.max_line_search_steps; ++ls, alpha *= 0.5) {
+      trial = x + alpha * d;
+      trial_energy = problem.value(trial);
+      if (!std::isfinite(trial_energy)) continue;
+      if (trial_energy <= energy + s.armijo * alpha * slope) {
+        accepted = true;
+        break;
+      }
+      // Near convergence the energy decrease drowns in rounding: accept a step that lowers
+      // the residual instead.
+      if (std::abs(trial_energy - energy) <= 1e-12 * std::max(1.0, std::abs(energy))) {
+        trial_g = problem.gradient(trial);
+        if (trial_g.norm() < residual) {
+          accepted = true;
+          break;
+        }
+      }
+    }
+    report.assembly_seconds += seconds_since(t0);
+    if (!accepted) {
+      report.failure = fmt::format("line search failed at Newton iteration {} (residual {:.3e})", it, residual);
+      return report;
+    }
+    x = trial;
+    energy = trial_energy;
+    previous_residual = residual;
+    t0 = std::chrono::steady_clock::now();
+    g = problem.gradient(x);
+    report.assembly_seconds += seconds_since(t0);
+    residual = g.norm();
+    if (progress) progress({it + 1, residual, energy, alpha, lin.iterations});
+  }
+}
+
+}  // namespace sinew
