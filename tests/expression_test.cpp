@@ -102,6 +102,10 @@ TEST(Expression, PrecedenceAndNumbers) {
   EXPECT_EQ(value_of("E"), 3.0);  // a parameter named like an exponent letter
   EXPECT_EQ(value_of("pow(2, 10)"), 1024.0);
   EXPECT_NEAR(value_of("exp(log(7))"), 7.0, 1e-14);
+  std::string sum = "x";
+  for (int i = 0; i < 1000; ++i) sum += "+x";
+  EXPECT_EQ(value_of(sum, 0.5), 500.5);
+  EXPECT_EQ(value_of(std::string(100, '(') + "x" + std::string(100, ')'), 2.0), 2.0);
 }
 
 TEST(Expression, ConstantsAreFolded) {
@@ -150,6 +154,11 @@ TEST(Expression, ParseErrorsNameExpressionPositionAndReason) {
   expect_error("sin()", {"function 'sin' expects 1 argument, got 0"});
   expect_error("x + 1/0", {"sub-expression '1/0' is not finite", "position 5"});
   expect_error("log(-1) * x", {"is not finite", "position 1"});
+  expect_error(std::string(300, '(') + "x" + std::string(300, ')'), {"nested deeper than 200 levels"});
+  expect_error(std::string(300, '-') + "x", {"nested deeper than 200 levels"});
+  std::string long_sum = "x";
+  while (long_sum.size() <= 4096) long_sum += "+x";
+  expect_error(long_sum, {"longer than 4096 characters"});
   expect_error("x", {"constant name 'x' is reserved"}, {{"x", 1.0}});
   expect_error("x", {"constant name 'log' is reserved"}, {{"log", 1.0}});
   expect_error("x", {"constant 'a' is not finite"}, {{"a", std::nan("")}});

@@ -82,6 +82,11 @@ class ExpressionParser {
         throw error(fmt::format("constant '{}' is not finite", name), std::string::npos);
       }
     }
+    // Bounds that keep the recursive parser and evaluator far from the stack limit.
+    if (text_.size() > kMaxLength) {
+      throw error(fmt::format("expression is longer than {} characters", kMaxLength),
+                  std::string::npos);
+    }
     skip_space();
     if (pos_ == text_.size()) throw error("empty expression", pos_);
     out_.root_ = expr();
@@ -148,7 +153,22 @@ class ExpressionParser {
     return add(n, start);
   }
 
+  // Counts nesting: parentheses and function arguments (expr), exponents, and signs.
+  struct Depth {
+    explicit Depth(ExpressionParser& p) : parser(p) {
+      if (++parser.depth_ > kMaxDepth) {
+        throw parser.error(fmt::format("expression is nested deeper than {} levels", kMaxDepth),
+                           parser.pos_);
+      }
+    }
+    ~Depth() { --parser.depth_; }
+    Depth(const Depth&) = delete;
+    Depth& operator=(const Depth&) = delete;
+    ExpressionParser& parser;
+  };
+
   int expr() {
+    const Depth guard(*this);
     const std::size_t start = (skip_space(), pos_);
     int lhs = term();
     for (char c = peek(); c == '+' || c == '-'; c = peek()) {
@@ -175,10 +195,12 @@ class ExpressionParser {
     const char c = peek();
     if (c == '+') {
       ++pos_;
+      const Depth guard(*this);
       return unary();
     }
     if (c == '-') {
       ++pos_;
+      const Depth guard(*this);
       Node n;
       n.op = Op::Negate;
       n.a = unary();
@@ -192,6 +214,7 @@ class ExpressionParser {
     const int base = primary();
     if (peek() != '^') return base;
     ++pos_;
+    const Depth guard(*this);
     const int exponent = unary();  // right-associative: a^b^c = a^(b^c)
     return make_power(base, exponent, start);
   }
@@ -333,10 +356,14 @@ class ExpressionParser {
     return add(n, start);
   }
 
+  static constexpr std::size_t kMaxLength = 4096;
+  static constexpr int kMaxDepth = 200;
+
   const std::string& text_;
   const std::map<std::string, double>& constants_;
   ScalarFunction& out_;
   std::size_t pos_ = 0;
+  int depth_ = 0;
 };
 
 // ---------------------------------------------------------------- ScalarFunction
