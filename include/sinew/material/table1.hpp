@@ -1,0 +1,20 @@
+#pragma once
+// Every material family of paper 002 Table 1 implemented in this library (linear corotational
+// lives in corotational.hpp; StVK and the Stable Neo-Hookean variants elsewhere).
+#include "sinew/material/corotational.hpp"
+#include "sinew/material/table1/arap.hpp"
+#include "sinew/material/table1/hencky.hpp"
+#include "sinew/material/table1/hill.hpp"
+#include "sinew/material/table1/mooney_rivlin.hpp"
+#include "sinew/material/table1/neo_hookean.hpp"
+#include "sinew/material/table1/neo_hookean_ogden.hpp"
+#include "sinew/material/table1/ogden.hpp"
+#include "sinew/material/table1/peng_landel.hpp"
+#include "sinew/material/table1/seth_hill.hpp"
+#include "sinew/material/table1/sts.hpp"
+#include "sinew/material/table1/symmetric_arap.hpp"
+#include "sinew/material/table1/symmetric_dirichlet.hpp"
+#include "sinew/material/table1/symmetric_seth_hill.hpp"
+#include "sinew/material/table1/valanis_landel.hpp"
+#include "sinew/material/table1/valanis_landel_new.hpp"
+#include "sinew/material/table1/valanis_landel_xu.hpp"
