@@ -31,7 +31,8 @@ Vec3 real_cubic_roots(double a0, double a1, double a2) {
     t.setConstant(std::cbrt(-q));
   } else {
     const double r = std::sqrt(-p / 3.0);
-    const double c = std::clamp(-q / (2.0 * r * r * r), -1.0, 1.0);
+    const double r3 = r * r * r;  // 0 only if -p underflows: then the root is triple anyway
+    const double c = r3 > 0.0 ? std::clamp(-q / (2.0 * r3), -1.0, 1.0) : 0.0;
     const double theta = std::acos(c) / 3.0;
     const double third = 2.0 * std::numbers::pi / 3.0;
     for (int k = 0; k < 3; ++k) t(k) = 2.0 * r * std::cos(theta - third * k);
