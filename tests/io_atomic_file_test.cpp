@@ -45,6 +45,11 @@ TEST(IoAtomicFile, LargeWritesGoThroughWhole) {
     os << "tail";
   });
   EXPECT_EQ(read_file(path), "head" + block + "tail");
+  // Many small writes crossing the internal buffer boundary several times.
+  write_file_atomically(path, [&](std::ostream& os) {
+    for (const char c : block) os.put(c);
+  });
+  EXPECT_EQ(read_file(path), block);
 }
 
 TEST(IoAtomicFile, ThrowingWriterKeepsTheOldFileAndLeavesNoTemporary) {
