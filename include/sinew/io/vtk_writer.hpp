@@ -1,0 +1,41 @@
+#pragma once
+// Simulation output for ParaView: the deformed volume mesh as a VTK XML UnstructuredGrid
+// (.vtu, inline base64 binary) and a ParaView collection (.pvd) that puts frames on a time
+// axis. Every file is written through write_file_atomically.
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sinew/mesh/volume_mesh.hpp"
+
+namespace sinew {
+
+// Named arrays written next to the mesh, in the order given.
+struct VtuFields {
+  // Per-vertex 3-vectors, flattened like positions: v[3 i + k] (size 3 * vertices).
+  std::vector<std::pair<std::string, Eigen::VectorXd>> point_vectors;
+  // Per-vertex scalars (size vertices).
+  std::vector<std::pair<std::string, Eigen::VectorXd>> point_scalars;
+  // Per-element scalars (size elements), e.g. J, energy_density, stress_norm, energy.
+  std::vector<std::pair<std::string, Eigen::VectorXd>> cell_scalars;
+};
+
+// Writes the mesh at positions x (x[3 v + i]) with point data "displacement" = x - rest
+// followed by `fields`. Points and data are Float64, connectivity and offsets Int64, cell
+// types UInt8 (12 hexahedron, 10 tetra), each array base64 with a UInt32 byte-count header.
+// Throws sinew::Error (naming the file and the array) on a size mismatch, an empty, repeated
+// or reserved name, or an array over 4 GiB.
+void write_vtu(const std::filesystem::path& path, const VolumeMesh& mesh, const Eigen::VectorXd& x,
+               const VtuFields& fields = {});
+
+// Writes a ParaView collection: one DataSet per (time, file), the file relative to the
+// .pvd's directory (as ParaView resolves it). Times must be finite.
+void write_pvd(const std::filesystem::path& path,
+               const std::vector<std::pair<double, std::string>>& time_and_relative_file);
+
+// Characters &, <, >, " and ' as XML entities (for names and attribute values).
+std::string xml_escape(const std::string& text);
+
+}  // namespace sinew

@@ -1,0 +1,152 @@
+#include "sinew/io/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <fmt/format.h>
+#include <streambuf>
+#include <system_error>
+#include <vector>
+
+#include "sinew/core/error.hpp"
+
+namespace sinew {
+namespace fs = std::filesystem;
+namespace {
+
+std::string reason(int err) { return std::generic_category().message(err); }
+
+// A buffered stream over a POSIX descriptor that remembers the errno of the first failed
+// write, so "No space left on device" reaches the message instead of a bare failbit.
+class DescriptorBuffer final : public std::streambuf {
+ public:
+  explicit DescriptorBuffer(int fd) : fd_(fd), buffer_(1 << 16) { reset(); }
+  int error() const { return error_; }
+
+ protected:
+  int_type overflow(int_type ch) override {
+    if (!drain()) return traits_type::eof();
+    if (!traits_type::eq_int_type(ch, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(ch);
+      pbump(1);
+    }
+    return traits_type::not_eof(ch);
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    if (n < static_cast<std::streamsize>(buffer_.size())) return std::streambuf::xsputn(s, n);
+    // Large blocks (base64 arrays) bypass the buffer.
+    if (!drain() || !write_all(s, static_cast<size_t>(n))) return 0;
+    return n;
+  }
+  int sync() override { return drain() ? 0 : -1; }
+
+ private:
+  void reset() { setp(buffer_.data(), buffer_.data() + buffer_.size()); }
+  bool drain() {
+    const bool ok = write_all(pbase(), static_cast<size_t>(pptr() - pbase()));
+    reset();
+    return ok;
+  }
+  bool write_all(const char* data, size_t size) {
+    if (error_ != 0) return false;
+    while (size > 0) {
+      const ssize_t n = ::write(fd_, data, size);
+      if (n < 0) {
+        if (errno == EINTR) continue;
+        error_ = errno;
+        return false;
+      }
+      data += n;
+      size -= static_cast<size_t>(n);
+    }
+    return true;
+  }
+
+  int fd_;
+  std::vector<char> buffer_;
+  int error_ = 0;
+};
+
+// Removes the temporary file unless the rename consumed it.
+struct TemporaryFile {
+  fs::path path;
+  int fd = -1;
+  bool renamed = false;
+  ~TemporaryFile() {
+    if (fd >= 0) ::close(fd);
+    if (!renamed && !path.empty()) ::unlink(path.c_str());
+  }
+};
+
+std::atomic<unsigned> temporary_counter{0};
+
+}  // namespace
+
+void write_file_atomically(const fs::path& path, const std::function<void(std::ostream&)>& writer) {
+  const std::string where = path.string();
+  if (path.empty() || !path.has_filename()) throw Error("no file name given", where);
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) {
+    throw Error(fmt::format("cannot write: directory '{}' does not exist", dir.string()), where);
+  }
+  if (fs::is_directory(path, ec)) throw Error("cannot write: it is a directory", where);
+
+  TemporaryFile tmp;
+  for (int attempt = 0; attempt < 100 && tmp.fd < 0; ++attempt) {
+    tmp.path = dir / fmt::format(".{}.tmp-{}-{}", path.filename().string(), ::getpid(),
+                                 temporary_counter.fetch_add(1));
+    tmp.fd = ::open(tmp.path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (tmp.fd < 0 && errno != EEXIST) {
+      const int err = errno;
+      tmp.path.clear();
+      throw Error(fmt::format("cannot create a temporary file in '{}': {}", dir.string(), reason(err)),
+                  where);
+    }
+  }
+  if (tmp.fd < 0) {
+    tmp.path.clear();
+    throw Error(fmt::format("cannot create a unique temporary file in '{}'", dir.string()), where);
+  }
+
+  DescriptorBuffer buffer(tmp.fd);
+  std::ostream out(&buffer);
+  try {
+    writer(out);
+  } catch (const Error& e) {
+    throw e.within(where);
+  } catch (const std::exception& e) {
+    throw Error(e.what(), where);
+  }
+  out.flush();
+  if (!out) {
+    throw Error(buffer.error() != 0 ? fmt::format("write failed: {}", reason(buffer.error()))
+                                    : std::string("write failed: the output stream reported an error"),
+                where);
+  }
+  if (::fsync(tmp.fd) != 0) throw Error(fmt::format("write failed: {}", reason(errno)), where);
+  const int fd = tmp.fd;
+  tmp.fd = -1;
+  if (::close(fd) != 0) throw Error(fmt::format("write failed: {}", reason(errno)), where);
+  if (::rename(tmp.path.c_str(), path.c_str()) != 0) {
+    throw Error(fmt::format("cannot replace the file: {}", reason(errno)), where);
+  }
+  tmp.renamed = true;
+}
+
+void ensure_directory(const fs::path& dir) {
+  const std::string where = dir.string();
+  if (dir.empty()) throw Error("no directory name given", "output directory");
+  std::error_code ec;
+  const fs::file_status status = fs::status(dir, ec);
+  if (fs::exists(status)) {
+    if (!fs::is_directory(status)) throw Error("exists and is not a directory", where);
+    return;
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(fmt::format("cannot create directory: {}", ec.message()), where);
+}
+
+}  // namespace sinew

@@ -1,0 +1,181 @@
+#include "sinew/io/vtk_writer.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <fmt/format.h>
+#include <limits>
+#include <ostream>
+#include <set>
+
+#include "sinew/core/error.hpp"
+#include "sinew/io/atomic_file.hpp"
+#include "sinew/io/base64.hpp"
+
+namespace sinew {
+namespace {
+
+constexpr const char* kByteOrder =
+    std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
+
+// VTK cell type ids (vtkCellType.h).
+constexpr std::uint8_t kTetraType = 10;
+constexpr std::uint8_t kHexahedronType = 12;
+
+// One <DataArray format="binary">: base64 of [UInt32 byte count][raw values] as a single
+// stream, which is how VTK itself writes uncompressed inline arrays.
+void write_array(std::ostream& os, std::string& scratch, const std::string& name, const char* type,
+                 int components, const void* data, std::size_t bytes) {
+  if (bytes > std::numeric_limits<std::uint32_t>::max()) {
+    throw Error(fmt::format("array '{}' has {} bytes, over the 4 GiB a UInt32 header can describe",
+                            name, bytes));
+  }
+  const auto header = static_cast<std::uint32_t>(bytes);
+  scratch.clear();
+  scratch.reserve((sizeof header + bytes + 2) / 3 * 4);
+  Base64Encoder encoder(scratch);
+  encoder.append(&header, sizeof header);
+  encoder.append(data, bytes);
+  encoder.finish();
+  os << fmt::format("        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"binary\">\n          ",
+                    type, xml_escape(name), components);
+  os.write(scratch.data(), static_cast<std::streamsize>(scratch.size()));
+  os << "\n        </DataArray>\n";
+}
+
+void write_doubles(std::ostream& os, std::string& scratch, const std::string& name, int components,
+                   const Eigen::VectorXd& values) {
+  write_array(os, scratch, name, "Float64", components, values.data(),
+              static_cast<std::size_t>(values.size()) * sizeof(double));
+}
+
+void check_fields(const std::vector<std::pair<std::string, Eigen::VectorXd>>& fields,
+                  Eigen::Index expected, const char* what, std::set<std::string>& names) {
+  for (const auto& [name, values] : fields) {
+    if (name.empty()) throw Error(fmt::format("a {} array has an empty name", what));
+    if (!names.insert(name).second) {
+      throw Error(fmt::format("{} array name '{}' is used twice (or is reserved)", what, name));
+    }
+    if (values.size() != expected) {
+      throw Error(fmt::format("{} array '{}' has {} values, expected {}", what, name, values.size(),
+                              expected));
+    }
+  }
+}
+
+}  // namespace
+
+std::string xml_escape(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+void write_vtu(const std::filesystem::path& path, const VolumeMesh& mesh, const Eigen::VectorXd& x,
+               const VtuFields& fields) {
+  const Eigen::Index nv = mesh.num_vertices(), ne = mesh.num_elements();
+  const int nodes = nodes_per_element(mesh.kind);
+  try {
+    if (mesh.elements.cols() != nodes) {
+      throw Error(fmt::format("{} mesh has {} columns of element nodes, expected {}",
+                              to_string(mesh.kind), mesh.elements.cols(), nodes));
+    }
+    if (x.size() != 3 * nv) {
+      throw Error(fmt::format("positions have {} values, expected 3 x {} vertices", x.size(), nv));
+    }
+    std::set<std::string> point_names{"displacement"}, cell_names;
+    check_fields(fields.point_vectors, 3 * nv, "point vector", point_names);
+    check_fields(fields.point_scalars, nv, "point scalar", point_names);
+    check_fields(fields.cell_scalars, ne, "cell scalar", cell_names);
+  } catch (const Error& e) {
+    throw e.within(path.string());
+  }
+
+  write_file_atomically(path, [&](std::ostream& os) {
+    std::string scratch;
+    // version 0.1 with a UInt32 header_type is what VTK itself writes for 32-bit headers.
+    os << "<?xml version=\"1.0\"?>\n"
+       << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"" << kByteOrder
+       << "\" header_type=\"UInt32\">\n"
+       << "  <UnstructuredGrid>\n"
+       << fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", nv, ne);
+
+    os << "      <PointData Vectors=\"displacement\">\n";
+    const Eigen::VectorXd displacement = x - mesh.rest_positions();
+    write_doubles(os, scratch, "displacement", 3, displacement);
+    for (const auto& [name, values] : fields.point_vectors) write_doubles(os, scratch, name, 3, values);
+    for (const auto& [name, values] : fields.point_scalars) write_doubles(os, scratch, name, 1, values);
+    os << "      </PointData>\n";
+
+    if (fields.cell_scalars.empty()) {
+      os << "      <CellData>\n";
+    } else {
+      os << "      <CellData Scalars=\"" << xml_escape(fields.cell_scalars.front().first) << "\">\n";
+    }
+    for (const auto& [name, values] : fields.cell_scalars) write_doubles(os, scratch, name, 1, values);
+    os << "      </CellData>\n";
+
+    os << "      <Points>\n";
+    write_doubles(os, scratch, "Points", 3, x);
+    os << "      </Points>\n";
+
+    os << "      <Cells>\n";
+    {
+      // Row-major node lists; Eigen stores elements column-major.
+      std::vector<std::int64_t> connectivity(static_cast<std::size_t>(ne * nodes));
+      for (Eigen::Index e = 0; e < ne; ++e)
+        for (int a = 0; a < nodes; ++a) connectivity[static_cast<std::size_t>(e * nodes + a)] = mesh.elements(e, a);
+      write_array(os, scratch, "connectivity", "Int64", 1, connectivity.data(),
+                  connectivity.size() * sizeof(std::int64_t));
+    }
+    {
+      std::vector<std::int64_t> offsets(static_cast<std::size_t>(ne));
+      for (Eigen::Index e = 0; e < ne; ++e) offsets[static_cast<std::size_t>(e)] = (e + 1) * nodes;
+      write_array(os, scratch, "offsets", "Int64", 1, offsets.data(), offsets.size() * sizeof(std::int64_t));
+    }
+    {
+      const std::vector<std::uint8_t> types(static_cast<std::size_t>(ne),
+                                            mesh.kind == ElementKind::Hex8 ? kHexahedronType : kTetraType);
+      write_array(os, scratch, "types", "UInt8", 1, types.data(), types.size());
+    }
+    os << "      </Cells>\n"
+       << "    </Piece>\n"
+       << "  </UnstructuredGrid>\n"
+       << "</VTKFile>\n";
+  });
+}
+
+void write_pvd(const std::filesystem::path& path,
+               const std::vector<std::pair<double, std::string>>& time_and_relative_file) {
+  for (std::size_t i = 0; i < time_and_relative_file.size(); ++i) {
+    const auto& [time, file] = time_and_relative_file[i];
+    if (!std::isfinite(time)) {
+      throw Error(fmt::format("data set {} ('{}') has a non-finite time", i, file), path.string());
+    }
+    if (file.empty()) throw Error(fmt::format("data set {} has an empty file name", i), path.string());
+  }
+  write_file_atomically(path, [&](std::ostream& os) {
+    os << "<?xml version=\"1.0\"?>\n"
+       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"" << kByteOrder << "\">\n"
+       << "  <Collection>\n";
+    for (const auto& [time, file] : time_and_relative_file) {
+      // {} prints the shortest decimal that reads back to the same double.
+      os << fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", time,
+                        xml_escape(file));
+    }
+    os << "  </Collection>\n"
+       << "</VTKFile>\n";
+  });
+}
+
+}  // namespace sinew
