@@ -2,6 +2,8 @@
 // with its default parameters (paper 000 §4, paper 002 Eq. 1).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "material_test_support.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/material/catalog.hpp"
@@ -21,7 +23,10 @@ class EveryMaterial : public ::testing::TestWithParam<std::string> {
  protected:
   void SetUp() override { material = MaterialCatalog::instance().make(GetParam()); }
   std::vector<test::SampleF> samples() const {
-    return test::sample_set(1234u, 10, material->domain() == Domain::All);
+    // SINEW_TEST_SEED explores other samples (e.g. a seed sweep before changing defaults).
+    const char* seed = std::getenv("SINEW_TEST_SEED");
+    return test::sample_set(seed ? static_cast<unsigned>(std::atoi(seed)) : 1234u, 10,
+                            material->domain() == Domain::All);
   }
   std::unique_ptr<Material> material;
 };
@@ -30,7 +35,10 @@ TEST_P(EveryMaterial, Pk1MatchesFiniteDifferences) {
   const auto set = samples();
   ASSERT_GE(set.size(), 50u);
   for (const auto& s : set) {
-    EXPECT_LE(rel_error(material->pk1(s.F), test::fd_pk1(*material, s.F)), 1e-6)
+    // Where P vanishes (rest, rotations) compare against the stress of a unit strain instead:
+    // the finite difference itself is only that accurate.
+    const double floor = 1e-4 * std::max(1.0, material->hessian(s.F).norm());
+    EXPECT_LE(rel_error(material->pk1(s.F), test::fd_pk1(*material, s.F), floor), 1e-6)
         << test::describe(s);
   }
 }

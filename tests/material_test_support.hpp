@@ -81,9 +81,15 @@ auto richardson(Fn&& diff, double h) {
   return ((4.0 * d2 - d1) / 3.0).eval();
 }
 
+// The step stays well inside the smooth region around F: below the smallest singular value
+// and, for inverted F, below the distance to the set sigma_i = -sigma_j where the polar
+// rotation R = U V^T (and every energy built on it) has a Hessian singularity.
 inline double fd_step(const Mat3& F) {
-  const Eigen::JacobiSVD<Mat3> svd(F);
-  return 1e-3 * std::min(1.0, svd.singularValues().minCoeff());
+  const Vec3 s = signed_svd(F).sigma;
+  double reach = std::min(1.0, s.cwiseAbs().minCoeff());
+  for (int i = 0; i < 3; ++i)
+    for (int j = i + 1; j < 3; ++j) reach = std::min(reach, std::abs(s(i) + s(j)));
+  return 1e-3 * reach;
 }
 
 inline Mat3 fd_pk1(const Material& m, const Mat3& F) {
