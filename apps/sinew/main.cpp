@@ -1,25 +1,57 @@
-// The sinew command line. Every sinew::Error becomes one line on stderr and exit code 2.
+// The sinew command line. Every sinew::Error becomes one line on stderr and exit code 2;
+// so does every command-line syntax error. --help and --version exit 0.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <fmt/format.h>
 
+#include "cli.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/version.hpp"
+
+namespace {
+
+// One line, whatever the message contains.
+std::string one_line(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  return text;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Sinew: simulation of hyperelastic solids (flesh, muscle, fat, rubber)"};
   app.set_version_flag("--version", std::string("sinew ") + sinew::kVersion);
   app.require_subcommand(1);
+
+  std::vector<sinew::cli::Command> commands;
+  commands.push_back(sinew::cli::add_materials_command(app));
+  CLI::App* material = app.add_subcommand("material", "Evaluate one material: eval, curve");
+  material->require_subcommand(1);
+  commands.push_back(sinew::cli::add_material_eval_command(*material));
+  commands.push_back(sinew::cli::add_material_curve_command(*material));
+
   try {
     app.parse(argc, argv);
+    for (const auto& command : commands) {
+      if (command.app->parsed()) command.run();
+    }
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    fmt::print(stderr, "sinew: error: {} (see --help)\n", one_line(e.what()));
+    return 2;
   } catch (const sinew::Error& e) {
-    fmt::print(stderr, "sinew: error: {}\n", e.what());
+    fmt::print(stderr, "sinew: error: {}\n", one_line(e.what()));
     return 2;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "sinew: internal error: {}\n", e.what());
+    fmt::print(stderr, "sinew: internal error: {}\n", one_line(e.what()));
     return 2;
   }
   return 0;
