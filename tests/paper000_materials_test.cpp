@@ -220,7 +220,8 @@ TEST(Paper000Extensions, FungPk1IsEq54AndRestStable) {
       const Mat3 P = mu0 * s.F + lambda * (J - alpha) * cofactor(s.F) + gamma * mu1 * e * s.F;
       EXPECT_LE(rel_error(m->pk1(s.F), P), 1e-12) << test::describe(s);
       const double psi = 0.5 * mu0 * (Ic - 3.0) + 0.5 * lambda * (J - alpha) * (J - alpha) +
-                         gamma * (e - 1.0);  // Eq. 53 in the form chosen (docs)
+                         gamma * (e - 1.0) -  // Eq. 53 in the form chosen (docs)
+                         0.5 * lambda * (1.0 - alpha) * (1.0 - alpha);  // shifted: Psi(I) = 0
       EXPECT_NEAR(m->psi(s.F), psi, 1e-11 * (1.0 + std::abs(psi)));
     }
     std::mt19937 rng(12);
@@ -262,7 +263,8 @@ TEST(Paper000Extensions, ArrudaBoyceIsEq58To61AndRestStable) {
     for (const auto& s : test::sample_set(14u, 3, true)) {
       const double Ic = s.F.squaredNorm(), J = s.F.determinant();
       const double psi = 0.5 * mu * (Ic - 3.0) + mu * b1 / 4.0 * (Ic * Ic - 9.0) +
-                         mu * b2 / 6.0 * (Ic * Ic * Ic - 27.0) + 0.5 * lambda * (J - alpha) * (J - alpha);
+                         mu * b2 / 6.0 * (Ic * Ic * Ic - 27.0) + 0.5 * lambda * (J - alpha) * (J - alpha) -
+                         0.5 * lambda * (1.0 - alpha) * (1.0 - alpha);  // shifted: Psi(I) = 0
       EXPECT_NEAR(m->psi(s.F), psi, 1e-11 * (1.0 + std::abs(psi)));
       const Mat3 P = mu * (1.0 + b1 * Ic + b2 * Ic * Ic) * s.F + lambda * (J - alpha) * cofactor(s.F);
       EXPECT_LE(rel_error(m->pk1(s.F), P), 1e-12);  // Eq. 59
@@ -283,8 +285,9 @@ TEST(Paper000Extensions, WithoutHardeningBothReduceToEq13) {
   const auto eq13 = make("stable_neo_hookean_eq13", {{"lambda", lambda}, {"mu", mu}});
   const auto fung = make("fung", {{"mu0", mu}, {"mu1", 0.7}, {"gamma", 0.0}, {"lambda", lambda}});
   const auto ab = make("arruda_boyce", {{"lambda", lambda}, {"mu", mu}, {"beta1", 0.0}, {"beta2", 0.0}});
-  // lambda/2 (J - alpha)^2 = lambda/2 (J - 1)^2 - mu (J - 1) + mu^2 / (2 lambda).
-  const double constant = mu * mu / (2.0 * lambda);
+  // lambda/2 (J - alpha)^2 = lambda/2 (J - 1)^2 - mu (J - 1) + mu^2 / (2 lambda); the constant
+  // is removed (every energy is shifted to Psi(I) = 0).
+  const double constant = 0.0;
   for (const auto& s : test::sample_set(16u, 4, true)) {
     for (const Material* m : {fung.get(), ab.get()}) {
       EXPECT_NEAR(m->psi(s.F) - eq13->psi(s.F), constant, 1e-11 * (1.0 + std::abs(eq13->psi(s.F))));

@@ -111,7 +111,7 @@ void register_table1_materials(std::vector<MaterialInfo>& out) {
                  {kLambda, kMu, {"mu4", 0.2, "coefficient of the quartic Green-strain term"}},
                  {},
                  {"lambda", "mu"},
-                 true,
+                 false,  // the mu4 term scales with neither Lame parameter
                  true,
                  [](const MaterialParameters& p) {
                    return std::make_unique<Sts>(v(p, "lambda"), v(p, "mu"), v(p, "mu4"));

@@ -21,6 +21,7 @@ class ArrudaBoyce final : public GeneralModelMaterial {
  private:
   double lambda_, mu_, beta1_, beta2_;
   ShiftedVolume volume_;
+  double rest_psi_ = 0.0;  // subtracted so that Psi(I) = 0 (constants do not change forces)
 };
 
 }  // namespace sinew

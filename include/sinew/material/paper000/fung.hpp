@@ -21,6 +21,7 @@ class Fung final : public GeneralModelMaterial {
  private:
   double mu0_, mu1_, gamma_, lambda_;
   ShiftedVolume volume_;
+  double rest_psi_ = 0.0;  // subtracted so that Psi(I) = 0 (constants do not change forces)
 };
 
 }  // namespace sinew

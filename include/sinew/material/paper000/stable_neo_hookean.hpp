@@ -24,6 +24,7 @@ class StableNeoHookean final : public GeneralModelMaterial {
  private:
   double lambda_, mu_;
   ShiftedVolume volume_;
+  double rest_psi_ = 0.0;  // subtracted so that Psi(I) = 0 (constants do not change forces)
 };
 
 }  // namespace sinew
