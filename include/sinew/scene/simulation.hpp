@@ -1,0 +1,57 @@
+#pragma once
+// Runs a scene: quasistatic load stepping over frames, each frame a projected-Newton solve
+// started from the previous frame's solution, with outputs written atomically per frame and
+// a checkpoint so an interrupted run can be resumed.
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sinew/scene/scene.hpp"
+
+namespace sinew {
+
+struct FrameRecord {
+  int frame = 0;
+  bool converged = false;
+  int newton_iterations = 0;
+  int linear_iterations = 0;
+  int substeps = 1;  // > 1 when the frame's boundary motion had to be split
+  double residual = 0.0;
+  double energy = 0.0;
+  double volume = 0.0;
+  double min_J = 0.0;
+  double seconds = 0.0;
+  double assembly_seconds = 0.0;
+  double solve_seconds = 0.0;
+  std::string failure;
+};
+
+struct ProgressEvent {
+  int frame = 0, frames = 0;
+  int newton_iteration = 0;  // 0 at the start of a frame
+  double residual = 0.0;
+  double elapsed = 0.0;       // seconds since the run started
+  bool frame_done = false;
+  const FrameRecord* record = nullptr;  // set when frame_done
+};
+
+struct RunOptions {
+  std::filesystem::path out_dir;  // empty: write nothing
+  std::optional<int> frames;      // overrides the scene's frame count
+  bool resume = false;            // continue from out_dir's checkpoint
+  std::function<void(const ProgressEvent&)> progress;
+};
+
+struct RunSummary {
+  Eigen::Index vertices = 0, elements = 0;
+  double rest_volume = 0.0;
+  std::vector<FrameRecord> frames;  // including frames from before a resume
+  Eigen::VectorXd x;                // final positions
+  bool all_converged() const;
+};
+
+RunSummary run_scene(const Scene& scene, const RunOptions& options);
+
+}  // namespace sinew
