@@ -37,10 +37,13 @@ Row describe(const MaterialInfo& info, const std::optional<YoungPoisson>& target
       } else if (info.normalized.size() == 1 && target->nu != 0.0) {
         // lambda_Lame is identically 0: match E at this family's only Poisson ratio, 0.
         row.parameters = normalize(info, {}, YoungPoisson{target->E, 0.0});
-        row.note = fmt::format("lambda_Lame is identically 0, so nu = 0 (not {:g}); E matched. "
-                               "Mix it with a volume term for nu != 0 (--mix-mu {} "
-                               "--mix-lambda ...)",
-                               target->nu, info.name);
+        row.note = fmt::format("lambda_Lame is identically 0, so nu = 0 (not {:g}); E matched{}",
+                               target->nu,
+                               info.separable
+                                   ? fmt::format(". Mix in a volume term for nu != 0 (--mix-mu "
+                                                 "{} --mix-lambda ...)",
+                                                 info.name)
+                                   : "");
       } else {
         row.parameters = normalize(info, {}, *target);
       }

@@ -89,11 +89,12 @@ MaterialParameters normalize(const MaterialInfo& info, const MaterialParameters&
   const int n = static_cast<int>(keys.size());
   if (n == 1 && std::abs(target.lambda) > 1e-12 * scale) {
     const double nu = target.lambda / (2.0 * (target.lambda + target.mu));
+    const std::string how =
+        info.separable ? fmt::format(", e.g. --mix-mu {} --mix-lambda neo_hookean", info.name) : "";
     throw Error(fmt::format("lambda_Lame is identically 0 for this one-parameter family, so "
                             "it can only match nu = 0 (asked for lambda_Lame = {:.6g}, nu = "
-                            "{:.6g}); mix it with a volume term instead (paper 002 §6, e.g. "
-                            "--mix-mu {} --mix-lambda neo_hookean)",
-                            target.lambda, nu, info.name),
+                            "{:.6g}); for nu != 0 mix a volume term in instead (paper 002 §6{})",
+                            target.lambda, nu, how),
                 where);
   }
 
