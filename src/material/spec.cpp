@@ -90,14 +90,16 @@ namespace {
 
 using nlohmann::json;
 
+// JSON-pointer paths after the caller's context (e.g. "scene.json: /objects/0/material"), as
+// the scene reader writes them.
 std::string join(const std::string& context, const std::string& key) {
-  return context.empty() ? key : context + "." + key;
+  return context + "/" + key;
 }
 
 void require_object(const json& j, const std::string& path) {
   if (!j.is_object()) {
     throw Error(fmt::format("expected a JSON object, got {}", j.type_name()),
-                path.empty() ? "material" : path);
+                path.empty() ? "/" : path);
   }
 }
 
