@@ -69,9 +69,8 @@ void run(benchmark::State& state, const std::shared_ptr<const Material>& m, Work
 }
 
 void register_material(const std::string& name, std::shared_ptr<const Material> m) {
-  for (const auto& [label, work] :
-       {std::pair{"psi", Work::Psi}, std::pair{"psi+P", Work::PsiP},
-        std::pair{"evaluate_clamp", Work::Evaluate}}) {
+  for (const auto& [label, work] : {std::pair{"psi", Work::Psi}, std::pair{"psi+P", Work::PsiP},
+                                    std::pair{"evaluate_clamp", Work::Evaluate}}) {
     benchmark::RegisterBenchmark((name + "/" + label).c_str(),
                                  [m, w = work](benchmark::State& s) { run(s, m, w); });
   }

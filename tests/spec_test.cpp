@@ -65,7 +65,8 @@ TEST(Spec, BuildRejectsContradictions) {
             "material 'linear_corotational': parameter 'mu'");
   spec.parameters.values.clear();
   spec.alpha = -1.0;
-  EXPECT_EQ(error_of([&] { build_material(spec); }).context, "material 'linear_corotational': alpha");
+  EXPECT_EQ(error_of([&] { build_material(spec); }).context,
+            "material 'linear_corotational': alpha");
   spec.alpha = 1.0;
   spec.target = YoungPoisson{1e5, 0.5};
   EXPECT_EQ(error_of([&] { build_material(spec); }).context, "nu");
@@ -103,11 +104,10 @@ TEST(SpecJson, ReadsBothForms) {
   EXPECT_FALSE(spec.target);
   EXPECT_NEAR(lame_from_energy(*build_material(spec)).lambda, 4.0, 1e-13);
 
-  spec = material_spec_from_json(
-      json::parse(R"({"mix": {"lambda_family": "linear_corotational",
+  spec = material_spec_from_json(json::parse(R"({"mix": {"lambda_family": "linear_corotational",
                               "mu_family": "linear_corotational", "alpha_mu": 2},
                       "E": 1000, "nu": 0.4})"),
-      "m");
+                                 "m");
   ASSERT_TRUE(spec.mix);
   EXPECT_EQ(spec.mix->alpha_mu, 2.0);
   EXPECT_EQ(spec.mix->alpha_lambda, 1.0);
@@ -122,7 +122,8 @@ TEST(SpecJson, EveryErrorNamesItsPath) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::vector<std::pair<json, std::string>> cases = {
       {json::array(), "scene.json: /materials/0"},
-      {json::parse(R"({"family": "linear_corotational", "colour": 1})"), "scene.json: /materials/0/colour"},
+      {json::parse(R"({"family": "linear_corotational", "colour": 1})"),
+       "scene.json: /materials/0/colour"},
       {json::parse(R"({"family": 3})"), "scene.json: /materials/0/family"},
       {json::parse(R"({"family": "nonexistent"})"), "scene.json: /materials/0/family"},
       {json::parse(R"({"parameters": {}})"), "scene.json: /materials/0/family"},
@@ -136,8 +137,10 @@ TEST(SpecJson, EveryErrorNamesItsPath) {
        "scene.json: /materials/0/parameters/mu"},
       {json::parse(R"({"family": "linear_corotational", "functions": {"f": "x"}})"),
        "scene.json: /materials/0/functions/f"},
-      {json::parse(R"({"family": "linear_corotational", "E": 1e5})"), "scene.json: /materials/0/nu"},
-      {json::parse(R"({"family": "linear_corotational", "nu": 0.3})"), "scene.json: /materials/0/E"},
+      {json::parse(R"({"family": "linear_corotational", "E": 1e5})"),
+       "scene.json: /materials/0/nu"},
+      {json::parse(R"({"family": "linear_corotational", "nu": 0.3})"),
+       "scene.json: /materials/0/E"},
       {json::parse(R"({"family": "linear_corotational", "E": 1e5, "nu": 0.5})"),
        "scene.json: /materials/0/nu"},
       {json::parse(R"({"family": "linear_corotational", "E": 1e5, "nu": 0.7})"),
@@ -146,14 +149,17 @@ TEST(SpecJson, EveryErrorNamesItsPath) {
        "scene.json: /materials/0/E"},
       {json::parse(R"({"family": "linear_corotational", "E": 0, "nu": 0.3})"),
        "scene.json: /materials/0/E"},
-      {json{{"family", "linear_corotational"}, {"E", 1.0}, {"nu", nan}}, "scene.json: /materials/0/nu"},
+      {json{{"family", "linear_corotational"}, {"E", 1.0}, {"nu", nan}},
+       "scene.json: /materials/0/nu"},
       {json::parse(R"({"family": "linear_corotational", "E": "1e5", "nu": 0.3})"),
        "scene.json: /materials/0/E"},
       {json::parse(R"({"family": "linear_corotational", "E": 1e5, "nu": 0.3,
                        "parameters": {"mu": 2}})"),
        "scene.json: /materials/0/parameters/mu"},
-      {json::parse(R"({"family": "linear_corotational", "alpha": 0})"), "scene.json: /materials/0/alpha"},
-      {json::parse(R"({"family": "linear_corotational", "alpha": true})"), "scene.json: /materials/0/alpha"},
+      {json::parse(R"({"family": "linear_corotational", "alpha": 0})"),
+       "scene.json: /materials/0/alpha"},
+      {json::parse(R"({"family": "linear_corotational", "alpha": true})"),
+       "scene.json: /materials/0/alpha"},
       {json::parse(R"({"mix": {"lambda_family": "linear_corotational",
                               "mu_family": "linear_corotational"}})"),
        "scene.json: /materials/0/E"},
