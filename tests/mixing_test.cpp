@@ -122,7 +122,8 @@ TEST(Mixing, LinearCorotationalMixAtUnitExponentsIsLinearCorotational) {
   const LinearCorotational reference(3.0, 0.4);
   for (const auto& s : test::sample_set(8u, 3, true)) {
     EXPECT_NEAR(mix->psi(s.F), reference.psi(s.F), 1e-12 * std::max(1.0, reference.psi(s.F)));
-    EXPECT_LE((mix->pk1(s.F) - reference.pk1(s.F)).norm(), 1e-12 * std::max(1.0, reference.pk1(s.F).norm()));
+    EXPECT_LE((mix->pk1(s.F) - reference.pk1(s.F)).norm(),
+              1e-12 * std::max(1.0, reference.pk1(s.F).norm()));
   }
   EXPECT_EQ(mix->domain(), Domain::All);
 }
@@ -166,8 +167,9 @@ TEST(Mixing, ConstructorChecksThePartsAndExponents) {
   const auto unit_mu = std::make_shared<LinearCorotational>(0.0, 1.0);
   EXPECT_NO_THROW(MixedMaterial(unit_lambda, unit_mu, {1.0, 1.0}));
   EXPECT_THROW(MixedMaterial(unit_mu, unit_mu, {1.0, 1.0}), Error);
-  EXPECT_THROW(MixedMaterial(unit_lambda, std::make_shared<LinearCorotational>(0.0, 2.0), {1.0, 1.0}),
-               Error);
+  EXPECT_THROW(
+      MixedMaterial(unit_lambda, std::make_shared<LinearCorotational>(0.0, 2.0), {1.0, 1.0}),
+      Error);
   EXPECT_THROW(MixedMaterial(unit_lambda, unit_mu, {1.0, 1.0}, 0.0, 1.0), Error);
   EXPECT_THROW(MixedMaterial(unit_lambda, unit_mu, {1.0, 1.0}, 1.0, -2.0), Error);
   EXPECT_THROW(MixedMaterial(nullptr, unit_mu, {1.0, 1.0}), Error);

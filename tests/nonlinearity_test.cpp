@@ -45,13 +45,15 @@ TEST_P(NonlinearEveryFamily, RestHessianAndLameParametersDoNotDependOnAlpha) {
 TEST_P(NonlinearEveryFamily, WrapperAtAlphaOneHalfPassesTheBattery) {
   const auto& info = MaterialCatalog::instance().find(GetParam());
   const NonlinearMaterial wrapped(family(GetParam()), 0.5);
-  test::check_material_battery(wrapped, {.seed = 99u, .per_kind = 10, .rest_stable = info.rest_stable});
+  test::check_material_battery(wrapped,
+                               {.seed = 99u, .per_kind = 10, .rest_stable = info.rest_stable});
 }
 
 TEST_P(NonlinearEveryFamily, WrapperAtAlphaTwoPassesTheBattery) {
   const auto& info = MaterialCatalog::instance().find(GetParam());
   const NonlinearMaterial wrapped(family(GetParam()), 2.0);
-  test::check_material_battery(wrapped, {.seed = 42u, .per_kind = 10, .rest_stable = info.rest_stable});
+  test::check_material_battery(wrapped,
+                               {.seed = 42u, .per_kind = 10, .rest_stable = info.rest_stable});
 }
 
 TEST_P(NonlinearEveryFamily, AlphaOneIsTheBaseItself) {
@@ -95,8 +97,8 @@ TEST(Nonlinearity, LinearCorotationalBecomesSethHillAndStVK) {
                               .matrix();
         EXPECT_LE((seth_hill.grad_stretch(s) - grad).norm(), 1e-12 * std::max(1.0, grad.norm()));
         // F view: StVK's P = F (2 mu E + lambda tr(E) I) with E = (F^T F - I)/2.
-        const Mat3 F = test::random_rotation(rng) * s.asDiagonal() *
-                       test::random_rotation(rng).transpose();
+        const Mat3 F =
+            test::random_rotation(rng) * s.asDiagonal() * test::random_rotation(rng).transpose();
         const Mat3 E = 0.5 * (F.transpose() * F - Mat3::Identity());
         const Mat3 P = F * (2.0 * mu * E + lambda * E.trace() * Mat3::Identity());
         EXPECT_LE((seth_hill.pk1(F) - P).norm(), 1e-11 * std::max(1.0, P.norm()));

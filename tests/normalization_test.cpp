@@ -75,8 +75,8 @@ TEST_P(NormalizeEveryFamily, RoundTripsYoungsModulusAndPoissonsRatio) {
       EXPECT_NEAR(got.nu, nu, 1e-9 * std::max(std::abs(nu), 1e-2));
       // Only the normalized parameters move.
       for (const auto& [key, value] : defaults.values) {
-        const bool solved = std::find(info.normalized.begin(), info.normalized.end(), key) !=
-                            info.normalized.end();
+        const bool solved =
+            std::find(info.normalized.begin(), info.normalized.end(), key) != info.normalized.end();
         if (!solved) {
           EXPECT_EQ(p.values.at(key), value) << key;
         }
@@ -114,7 +114,8 @@ TEST(Normalize, StableNeoHookeanMatchesPaper000) {
   }
 }
 
-// Paper 000 §3.4 (and paper 002 Table 1, Eq. 13 of Smith et al.): mu = mu_L, lambda = lambda_L + mu_L.
+// Paper 000 §3.4 (and paper 002 Table 1, Eq. 13 of Smith et al.): mu = mu_L, lambda = lambda_L +
+// mu_L.
 TEST(Normalize, StableNeoHookeanEq13MatchesPaper000) {
   const MaterialInfo* info = find_family("stable_neo_hookean_eq13");
   if (!info) GTEST_SKIP() << "stable_neo_hookean_eq13 not in this catalog";
@@ -153,10 +154,10 @@ TEST(Normalize, NonlinearParameterisationConvergesByNewton) {
 }
 
 TEST(Normalize, OneParameterFamilyMatchesEAtNuZeroOnly) {
-  const MaterialInfo info = synthetic("shear_only", {{"mu", 1.0, ""}}, {"mu"},
-                                      [](const MaterialParameters& p) {
-                                        return Lame{0.0, 0.5 * p.values.at("mu")};
-                                      });
+  const MaterialInfo info =
+      synthetic("shear_only", {{"mu", 1.0, ""}}, {"mu"}, [](const MaterialParameters& p) {
+        return Lame{0.0, 0.5 * p.values.at("mu")};
+      });
   const MaterialParameters p = normalize(info, {}, YoungPoisson{300.0, 0.0});
   EXPECT_NEAR(p.values.at("mu"), 300.0, 1e-10);  // E = 2 mu_L = mu
   const std::string message = error_of([&] { normalize(info, {}, YoungPoisson{300.0, 0.3}); });
@@ -168,10 +169,10 @@ TEST(Normalize, OneParameterFamilyMatchesEAtNuZeroOnly) {
 TEST(Normalize, OneParameterFamilyWithHiddenVolumeTermIsCaught) {
   // Listed with one normalized parameter but lambda_L = 1 always: normalisation must not
   // silently return a material with the wrong lambda_Lame.
-  const MaterialInfo info = synthetic("wrong_listing", {{"mu", 1.0, ""}}, {"mu"},
-                                      [](const MaterialParameters& p) {
-                                        return Lame{1.0, p.values.at("mu")};
-                                      });
+  const MaterialInfo info =
+      synthetic("wrong_listing", {{"mu", 1.0, ""}}, {"mu"}, [](const MaterialParameters& p) {
+        return Lame{1.0, p.values.at("mu")};
+      });
   EXPECT_THROW(normalize(info, {}, Lame{0.0, 2.0}), Error);
 }
 

@@ -65,7 +65,8 @@ TEST(Spec, BuildRejectsContradictions) {
             "material 'linear_corotational': parameter 'mu'");
   spec.parameters.values.clear();
   spec.alpha = -1.0;
-  EXPECT_EQ(error_of([&] { build_material(spec); }).context, "material 'linear_corotational': alpha");
+  EXPECT_EQ(error_of([&] { build_material(spec); }).context,
+            "material 'linear_corotational': alpha");
   spec.alpha = 1.0;
   spec.target = YoungPoisson{1e5, 0.5};
   EXPECT_EQ(error_of([&] { build_material(spec); }).context, "nu");
@@ -103,11 +104,10 @@ TEST(SpecJson, ReadsBothForms) {
   EXPECT_FALSE(spec.target);
   EXPECT_NEAR(lame_from_energy(*build_material(spec)).lambda, 4.0, 1e-13);
 
-  spec = material_spec_from_json(
-      json::parse(R"({"mix": {"lambda_family": "linear_corotational",
+  spec = material_spec_from_json(json::parse(R"({"mix": {"lambda_family": "linear_corotational",
                               "mu_family": "linear_corotational", "alpha_mu": 2},
                       "E": 1000, "nu": 0.4})"),
-      "m");
+                                 "m");
   ASSERT_TRUE(spec.mix);
   EXPECT_EQ(spec.mix->alpha_mu, 2.0);
   EXPECT_EQ(spec.mix->alpha_lambda, 1.0);
@@ -121,66 +121,72 @@ TEST(SpecJson, ReadsBothForms) {
 TEST(SpecJson, EveryErrorNamesItsPath) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::vector<std::pair<json, std::string>> cases = {
-      {json::array(), "scene.materials[0]"},
-      {json::parse(R"({"family": "linear_corotational", "colour": 1})"), "scene.materials[0].colour"},
-      {json::parse(R"({"family": 3})"), "scene.materials[0].family"},
-      {json::parse(R"({"family": "nonexistent"})"), "scene.materials[0].family"},
-      {json::parse(R"({"parameters": {}})"), "scene.materials[0].family"},
+      {json::array(), "scene.json: /materials/0"},
+      {json::parse(R"({"family": "linear_corotational", "colour": 1})"),
+       "scene.json: /materials/0/colour"},
+      {json::parse(R"({"family": 3})"), "scene.json: /materials/0/family"},
+      {json::parse(R"({"family": "nonexistent"})"), "scene.json: /materials/0/family"},
+      {json::parse(R"({"parameters": {}})"), "scene.json: /materials/0/family"},
       {json::parse(R"({"family": "linear_corotational", "parameters": {"kappa": 1}})"),
-       "scene.materials[0].parameters.kappa"},
+       "scene.json: /materials/0/parameters/kappa"},
       {json::parse(R"({"family": "linear_corotational", "parameters": {"mu": "1"}})"),
-       "scene.materials[0].parameters.mu"},
+       "scene.json: /materials/0/parameters/mu"},
       {json::parse(R"({"family": "linear_corotational", "parameters": [1]})"),
-       "scene.materials[0].parameters"},
+       "scene.json: /materials/0/parameters"},
       {json{{"family", "linear_corotational"}, {"parameters", {{"mu", nan}}}},
-       "scene.materials[0].parameters.mu"},
+       "scene.json: /materials/0/parameters/mu"},
       {json::parse(R"({"family": "linear_corotational", "functions": {"f": "x"}})"),
-       "scene.materials[0].functions.f"},
-      {json::parse(R"({"family": "linear_corotational", "E": 1e5})"), "scene.materials[0].nu"},
-      {json::parse(R"({"family": "linear_corotational", "nu": 0.3})"), "scene.materials[0].E"},
+       "scene.json: /materials/0/functions/f"},
+      {json::parse(R"({"family": "linear_corotational", "E": 1e5})"),
+       "scene.json: /materials/0/nu"},
+      {json::parse(R"({"family": "linear_corotational", "nu": 0.3})"),
+       "scene.json: /materials/0/E"},
       {json::parse(R"({"family": "linear_corotational", "E": 1e5, "nu": 0.5})"),
-       "scene.materials[0].nu"},
+       "scene.json: /materials/0/nu"},
       {json::parse(R"({"family": "linear_corotational", "E": 1e5, "nu": 0.7})"),
-       "scene.materials[0].nu"},
+       "scene.json: /materials/0/nu"},
       {json::parse(R"({"family": "linear_corotational", "E": -1, "nu": 0.3})"),
-       "scene.materials[0].E"},
+       "scene.json: /materials/0/E"},
       {json::parse(R"({"family": "linear_corotational", "E": 0, "nu": 0.3})"),
-       "scene.materials[0].E"},
-      {json{{"family", "linear_corotational"}, {"E", 1.0}, {"nu", nan}}, "scene.materials[0].nu"},
+       "scene.json: /materials/0/E"},
+      {json{{"family", "linear_corotational"}, {"E", 1.0}, {"nu", nan}},
+       "scene.json: /materials/0/nu"},
       {json::parse(R"({"family": "linear_corotational", "E": "1e5", "nu": 0.3})"),
-       "scene.materials[0].E"},
+       "scene.json: /materials/0/E"},
       {json::parse(R"({"family": "linear_corotational", "E": 1e5, "nu": 0.3,
                        "parameters": {"mu": 2}})"),
-       "scene.materials[0].parameters.mu"},
-      {json::parse(R"({"family": "linear_corotational", "alpha": 0})"), "scene.materials[0].alpha"},
-      {json::parse(R"({"family": "linear_corotational", "alpha": true})"), "scene.materials[0].alpha"},
+       "scene.json: /materials/0/parameters/mu"},
+      {json::parse(R"({"family": "linear_corotational", "alpha": 0})"),
+       "scene.json: /materials/0/alpha"},
+      {json::parse(R"({"family": "linear_corotational", "alpha": true})"),
+       "scene.json: /materials/0/alpha"},
       {json::parse(R"({"mix": {"lambda_family": "linear_corotational",
                               "mu_family": "linear_corotational"}})"),
-       "scene.materials[0].E"},
+       "scene.json: /materials/0/E"},
       {json::parse(R"({"family": "linear_corotational", "E": 1, "nu": 0.3,
                        "mix": {"lambda_family": "linear_corotational",
                                "mu_family": "linear_corotational"}})"),
-       "scene.materials[0].family"},
+       "scene.json: /materials/0/family"},
       {json::parse(R"({"E": 1, "nu": 0.3, "mix": {"mu_family": "linear_corotational"}})"),
-       "scene.materials[0].mix.lambda_family"},
+       "scene.json: /materials/0/mix/lambda_family"},
       {json::parse(R"({"E": 1, "nu": 0.3, "mix": {"lambda_family": "linear_corotational",
                        "mu_family": "x"}})"),
-       "scene.materials[0].mix.mu_family"},
+       "scene.json: /materials/0/mix/mu_family"},
       {json::parse(R"({"E": 1, "nu": 0.3, "mix": {"lambda_family": "linear_corotational",
                        "mu_family": "linear_corotational", "alpha_mu": -2}})"),
-       "scene.materials[0].mix.alpha_mu"},
+       "scene.json: /materials/0/mix/alpha_mu"},
       {json::parse(R"({"E": 1, "nu": 0.3, "mix": {"lambda_family": "linear_corotational",
                        "mu_family": "linear_corotational", "beta": 1}})"),
-       "scene.materials[0].mix.beta"},
+       "scene.json: /materials/0/mix/beta"},
       {json::parse(R"({"E": 1, "nu": 0.3, "mix": {"lambda_family": "linear_corotational",
                        "mu_family": "linear_corotational", "mu_parameters": {"mu": 3}}})"),
-       "scene.materials[0].mix.mu_parameters.mu"},
+       "scene.json: /materials/0/mix/mu_parameters/mu"},
       {json::parse(R"({"E": 1, "nu": 0.3, "mix": "linear_corotational"})"),
-       "scene.materials[0].mix"},
+       "scene.json: /materials/0/mix"},
   };
   for (const auto& [j, path] : cases) {
     SCOPED_TRACE(j.dump());
-    const Caught c = error_of([&] { material_spec_from_json(j, "scene.materials[0]"); });
+    const Caught c = error_of([&] { material_spec_from_json(j, "scene.json: /materials/0"); });
     EXPECT_EQ(c.context, path) << c.message;
     EXPECT_FALSE(c.message.empty());
   }

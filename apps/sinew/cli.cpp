@@ -54,8 +54,8 @@ void add_material_options(CLI::App& cmd, MaterialOptions& o) {
   o.alpha_opt = cmd.add_option("--alpha", o.alpha, "Nonlinearity exponent (paper 002 Eq. 16)");
   cmd.add_option("--mix-lambda", o.mix_lambda, "Mix: family giving the lambda-part (Eq. 19)");
   cmd.add_option("--mix-mu", o.mix_mu, "Mix: family giving the mu-part (Eq. 19)");
-  o.alpha_lambda_opt = cmd.add_option("--alpha-lambda", o.alpha_lambda,
-                                      "Mix: exponent of the lambda-part (Eq. 20)");
+  o.alpha_lambda_opt =
+      cmd.add_option("--alpha-lambda", o.alpha_lambda, "Mix: exponent of the lambda-part (Eq. 20)");
   o.alpha_mu_opt =
       cmd.add_option("--alpha-mu", o.alpha_mu, "Mix: exponent of the mu-part (Eq. 20)");
 }
@@ -98,7 +98,8 @@ MaterialSpec material_spec_from_options(const MaterialOptions& o) {
   if (mixing) {
     if (o.mix_lambda.empty()) throw Error("required together with --mix-mu", "--mix-lambda");
     if (o.mix_mu.empty()) throw Error("required together with --mix-lambda", "--mix-mu");
-    if (!o.material.empty()) throw Error("give either --material or --mix-lambda/--mix-mu", "--material");
+    if (!o.material.empty())
+      throw Error("give either --material or --mix-lambda/--mix-mu", "--material");
     if (!o.params.empty() || !o.fns.empty()) {
       throw Error("a mix normalises both parts itself; it takes no --param/--fn", "--param");
     }
@@ -235,8 +236,8 @@ std::string describe_material_text(const MaterialSpec& spec, const BuiltMaterial
   } else {
     out += fmt::format("  parameters: {}\n", format_parameters(built.parameters));
   }
-  out += fmt::format("  lambda_Lame = {:.10g}, mu_Lame = {:.10g}", built.lame.lambda,
-                     built.lame.mu);
+  out +=
+      fmt::format("  lambda_Lame = {:.10g}, mu_Lame = {:.10g}", built.lame.lambda, built.lame.mu);
   try {
     const YoungPoisson ev = young_poisson(built.lame);
     out += fmt::format(", E = {:.10g}, nu = {:.10g}\n", ev.E, ev.nu);

@@ -20,10 +20,11 @@ struct Options {
 Command add_material_curve_command(CLI::App& material) {
   auto o = std::make_shared<Options>();
   CLI::App* cmd = material.add_subcommand(
-      "curve", "Stress-stretch curve: uniaxial F = diag(s, t, t) and biaxial diag(s, s, t) with "
-               "the lateral stretch t solved for zero lateral stress, or simple shear "
-               "F = I + s e0 e1^T; prints stretch, lateral stretch, J, nominal stress (P00, or "
-               "P01 for shear) and psi");
+      "curve",
+      "Stress-stretch curve: uniaxial F = diag(s, t, t) and biaxial diag(s, s, t) with "
+      "the lateral stretch t solved for zero lateral stress, or simple shear "
+      "F = I + s e0 e1^T; prints stretch, lateral stretch, J, nominal stress (P00, or "
+      "P01 for shear) and psi");
   add_material_options(*cmd, o->material);
   cmd->add_option("--stretch-from", o->from, "First stretch s (default 0.5)");
   cmd->add_option("--stretch-to", o->to, "Last stretch s (default 2)");
@@ -79,15 +80,14 @@ Command add_material_curve_command(CLI::App& material) {
     if (o->csv) {
       fmt::print("stretch,lateral_stretch,J,stress,psi\n");
       for (const auto& p : curve) {
-        fmt::print("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", p.stretch, p.lateral, p.J,
-                   p.stress, p.psi);
+        fmt::print("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", p.stretch, p.lateral, p.J, p.stress,
+                   p.psi);
       }
       return;
     }
     fmt::print("{}", describe_material_text(spec, built));
     fmt::print("{} curve, nominal stress {}\n", to_string(mode), stress_name);
-    fmt::print("{:>14} {:>14} {:>14} {:>16} {:>16}\n", "stretch", "lateral", "J", "stress",
-               "psi");
+    fmt::print("{:>14} {:>14} {:>14} {:>16} {:>16}\n", "stretch", "lateral", "J", "stress", "psi");
     for (const auto& p : curve) {
       fmt::print("{:>14.8g} {:>14.8g} {:>14.8g} {:>16.8g} {:>16.8g}\n", p.stretch, p.lateral, p.J,
                  p.stress, p.psi);

@@ -35,8 +35,9 @@ Mat3 parse_F(const std::vector<std::string>& values) {
 Command add_material_eval_command(CLI::App& material) {
   auto o = std::make_shared<Options>();
   CLI::App* cmd = material.add_subcommand(
-      "eval", "Evaluate psi, P = dpsi/dF, the 9x9 Hessian (column-wise vec), its PSD "
-              "projection and eigenvalues at one deformation gradient");
+      "eval",
+      "Evaluate psi, P = dpsi/dF, the 9x9 Hessian (column-wise vec), its PSD "
+      "projection and eigenvalues at one deformation gradient");
   add_material_options(*cmd, o->material);
   cmd->add_option("--F", o->F, "Deformation gradient, 9 numbers row by row")->required();
   cmd->add_option("--projection", o->projection, "Hessian projection: clamp (default), abs, none");

@@ -37,10 +37,12 @@ Row describe(const MaterialInfo& info, const std::optional<YoungPoisson>& target
       } else if (info.normalized.size() == 1 && target->nu != 0.0) {
         // lambda_Lame is identically 0: match E at this family's only Poisson ratio, 0.
         row.parameters = normalize(info, {}, YoungPoisson{target->E, 0.0});
-        row.note = fmt::format("lambda_Lame is identically 0, so nu = 0 (not {:g}); E matched. "
-                               "Mix it with a volume term for nu != 0 (--mix-mu {} "
-                               "--mix-lambda ...)",
-                               target->nu, info.name);
+        row.note = fmt::format(
+            "lambda_Lame is identically 0, so nu = 0 (not {:g}); E matched{}", target->nu,
+            info.separable ? fmt::format(". Mix in a volume term for nu != 0 (--mix-mu "
+                                         "{} --mix-lambda ...)",
+                                         info.name)
+                           : "");
       } else {
         row.parameters = normalize(info, {}, *target);
       }
@@ -130,7 +132,8 @@ Command add_materials_command(CLI::App& app) {
       "List every material family: parameters (defaults, or normalised to --E/--nu), Lame "
       "parameters, E and nu computed from the energy, reference and formula");
   cmd->add_flag("--json", options->json, "Print JSON");
-  options->E_opt = cmd->add_option("--E", options->E, "Normalise every family to this Young's modulus");
+  options->E_opt =
+      cmd->add_option("--E", options->E, "Normalise every family to this Young's modulus");
   options->nu_opt = cmd->add_option("--nu", options->nu, "...and this Poisson's ratio");
   auto run = [options] {
     std::optional<YoungPoisson> target;
@@ -149,11 +152,12 @@ Command add_materials_command(CLI::App& app) {
       target = YoungPoisson{E, nu};
     }
     std::vector<Row> rows;
-    for (const auto& info : MaterialCatalog::instance().all()) rows.push_back(describe(info, target));
+    for (const auto& info : MaterialCatalog::instance().all())
+      rows.push_back(describe(info, target));
     if (options->json) {
       nlohmann::json j;
-      j["target"] = target ? nlohmann::json{{"E", target->E}, {"nu", target->nu}}
-                           : nlohmann::json(nullptr);
+      j["target"] =
+          target ? nlohmann::json{{"E", target->E}, {"nu", target->nu}} : nlohmann::json(nullptr);
       j["families"] = nlohmann::json::array();
       for (const auto& row : rows) j["families"].push_back(row_json(row));
       fmt::print("{}\n", j.dump(2));

@@ -50,9 +50,10 @@ MaterialParameters lambda_part_parameters(const MaterialInfo& family,
                                           const MaterialParameters& base) {
   require_separable(family, "lambda");
   if (family.normalized.size() != 2) {
-    throw Error("family has no volume term to take a lambda-part from (lambda_Lame is fixed "
-                "by its parameters or identically 0)",
-                fmt::format("mix: lambda-part: material '{}'", family.name));
+    throw Error(
+        "family has no volume term to take a lambda-part from (lambda_Lame is fixed "
+        "by its parameters or identically 0)",
+        fmt::format("mix: lambda-part: material '{}'", family.name));
   }
   return normalize(family, base, Lame{1.0, 0.0});
 }
@@ -105,8 +106,8 @@ Mat3 MixedMaterial::hess_stretch(const Vec3& s) const {
 
 MixedMaterial::Parts MixedMaterial::at(const Vec3& s) const {
   Parts out;
-  for (const auto& [weight, part] : {std::pair{lame_.lambda, lambda_part_.get()},
-                                     std::pair{lame_.mu, mu_part_.get()}}) {
+  for (const auto& [weight, part] :
+       {std::pair{lame_.lambda, lambda_part_.get()}, std::pair{lame_.mu, mu_part_.get()}}) {
     const Vec3 p = part->grad_stretch(s);
     const Mat3 h = part->hess_stretch(s);
     Vec3 twist, flip;

@@ -93,8 +93,8 @@ void NonlinearMaterial::pairs(const Stretch& st, Vec3& twist, Vec3& flip) const 
     // P_i - P_j = base_flip (t_i - t_j): every difference quotient stays finite as s_i -> s_j.
     const double dt = power_divided_difference(st.s(i), st.s(j), alpha_);        // dt/ds
     const double da = power_divided_difference(st.s(i), st.s(j), alpha_ - 1.0);  // da/ds
-    flip(k) = (0.5 * (st.a(i) + st.a(j)) * base_flip(k) * dt + 0.5 * (st.P(i) + st.P(j)) * da) /
-              alpha_;
+    flip(k) =
+        (0.5 * (st.a(i) + st.a(j)) * base_flip(k) * dt + 0.5 * (st.P(i) + st.P(j)) * da) / alpha_;
     // s_i + s_j > 0 on the domain, so the twist quotient is safe as it stands.
     twist(k) = (st.g(i) + st.g(j)) / (st.s(i) + st.s(j));
   }

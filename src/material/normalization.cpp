@@ -67,9 +67,10 @@ MaterialParameters normalize(const MaterialInfo& info, const MaterialParameters&
   MaterialParameters params = complete_parameters(info, base);
   const std::vector<std::string>& keys = info.normalized;
   if (keys.empty()) {
-    throw Error("this family has no parameters to normalise (its shape is fixed); use it with "
-                "its own parameters or mix it with other families (paper 002 §6)",
-                where);
+    throw Error(
+        "this family has no parameters to normalise (its shape is fixed); use it with "
+        "its own parameters or mix it with other families (paper 002 §6)",
+        where);
   }
   if (keys.size() > 2) {
     throw Error(fmt::format("{} normalized parameters listed; normalisation solves for one or "
@@ -89,11 +90,12 @@ MaterialParameters normalize(const MaterialInfo& info, const MaterialParameters&
   const int n = static_cast<int>(keys.size());
   if (n == 1 && std::abs(target.lambda) > 1e-12 * scale) {
     const double nu = target.lambda / (2.0 * (target.lambda + target.mu));
+    const std::string how =
+        info.separable ? fmt::format(", e.g. --mix-mu {} --mix-lambda neo_hookean", info.name) : "";
     throw Error(fmt::format("lambda_Lame is identically 0 for this one-parameter family, so "
                             "it can only match nu = 0 (asked for lambda_Lame = {:.6g}, nu = "
-                            "{:.6g}); mix it with a volume term instead (paper 002 §6, e.g. "
-                            "--mix-mu {} --mix-lambda neo_hookean)",
-                            target.lambda, nu, info.name),
+                            "{:.6g}); for nu != 0 mix a volume term in instead (paper 002 §6{})",
+                            target.lambda, nu, how),
                 where);
   }
 
@@ -153,12 +155,13 @@ MaterialParameters normalize(const MaterialInfo& info, const MaterialParameters&
       if (singular) {
         std::string names;
         for (const auto& key : keys) names += (names.empty() ? "" : ", ") + key;
-        throw Error(fmt::format("the Jacobian of (lambda_Lame, mu_Lame) with respect to ({}) is "
-                                "singular at ({}); these parameters cannot set the Lame "
-                                "parameters independently",
-                                names, n == 1 ? fmt::format("{}", x(0))
-                                              : fmt::format("{}, {}", x(0), x(1))),
-                    "normalisation");
+        throw Error(
+            fmt::format("the Jacobian of (lambda_Lame, mu_Lame) with respect to ({}) is "
+                        "singular at ({}); these parameters cannot set the Lame "
+                        "parameters independently",
+                        names,
+                        n == 1 ? fmt::format("{}", x(0)) : fmt::format("{}, {}", x(0), x(1))),
+            "normalisation");
       }
 
       // Backtracking keeps nonlinear maps from overshooting; affine maps take full steps.
@@ -169,8 +172,8 @@ MaterialParameters normalize(const MaterialInfo& info, const MaterialParameters&
         x_new = x - step * dx;
         r_new = residual(x_new);
       }
-      const bool tiny_step = (x_new - x).cwiseAbs().maxCoeff() <=
-                             kTolerance * x.cwiseAbs().maxCoeff();
+      const bool tiny_step =
+          (x_new - x).cwiseAbs().maxCoeff() <= kTolerance * x.cwiseAbs().maxCoeff();
       if (r_new.norm() <= r.norm()) {
         x = x_new;
         r = r_new;

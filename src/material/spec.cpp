@@ -90,14 +90,14 @@ namespace {
 
 using nlohmann::json;
 
-std::string join(const std::string& context, const std::string& key) {
-  return context.empty() ? key : context + "." + key;
-}
+// JSON-pointer paths after the caller's context (e.g. "scene.json: /objects/0/material"), as
+// the scene reader writes them.
+std::string join(const std::string& context, const std::string& key) { return context + "/" + key; }
 
 void require_object(const json& j, const std::string& path) {
   if (!j.is_object()) {
     throw Error(fmt::format("expected a JSON object, got {}", j.type_name()),
-                path.empty() ? "material" : path);
+                path.empty() ? "/" : path);
   }
 }
 
@@ -187,7 +187,8 @@ MixSpec read_mix(const json& j, const std::string& path) {
   mix.mu_family = text(j.at("mu_family"), join(path, "mu_family"));
   const MaterialInfo& lambda_info = family_named(mix.lambda_family, join(path, "lambda_family"));
   const MaterialInfo& mu_info = family_named(mix.mu_family, join(path, "mu_family"));
-  if (j.contains("alpha_lambda")) mix.alpha_lambda = exponent(j["alpha_lambda"], join(path, "alpha_lambda"));
+  if (j.contains("alpha_lambda"))
+    mix.alpha_lambda = exponent(j["alpha_lambda"], join(path, "alpha_lambda"));
   if (j.contains("alpha_mu")) mix.alpha_mu = exponent(j["alpha_mu"], join(path, "alpha_mu"));
   for (const auto& [info, which, params] :
        {std::tuple{&lambda_info, std::string("lambda"), &mix.lambda_parameters},
@@ -231,9 +232,10 @@ MaterialSpec material_spec_from_json(const json& j, const std::string& context) 
   if (j.contains("mix")) {
     for (const char* key : {"family", "parameters", "functions", "alpha"}) {
       if (j.contains(key)) {
-        throw Error("not allowed together with 'mix' (a mix sets its parts' parameters and "
-                    "exponents inside 'mix')",
-                    join(context, key));
+        throw Error(
+            "not allowed together with 'mix' (a mix sets its parts' parameters and "
+            "exponents inside 'mix')",
+            join(context, key));
       }
     }
     if (!spec.target) throw Error("missing: a mix needs E and nu", join(context, "E"));
@@ -241,7 +243,8 @@ MaterialSpec material_spec_from_json(const json& j, const std::string& context) 
     return spec;
   }
 
-  if (!j.contains("family")) throw Error("missing required key (or give 'mix')", join(context, "family"));
+  if (!j.contains("family"))
+    throw Error("missing required key (or give 'mix')", join(context, "family"));
   spec.family = text(j["family"], join(context, "family"));
   const MaterialInfo& info = family_named(spec.family, join(context, "family"));
   if (j.contains("parameters")) {

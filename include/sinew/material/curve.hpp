@@ -20,7 +20,7 @@ struct CurvePoint {
   double stretch = 1.0;  // s
   double lateral = 1.0;  // t (1 for shear)
   double J = 1.0;
-  double stress = 0.0;   // P00, or P01 for shear
+  double stress = 0.0;  // P00, or P01 for shear
   double psi = 0.0;
 };
 
@@ -35,7 +35,7 @@ double solve_lateral_stretch(const Material& material, CurveMode mode, double st
 
 // steps + 1 equally spaced stretches from `from` to `to`. Requires finite from < to,
 // steps >= 1, and from > 0 for uniaxial and biaxial modes (principal stretches).
-std::vector<CurvePoint> stress_stretch_curve(const Material& material, CurveMode mode,
-                                             double from, double to, int steps);
+std::vector<CurvePoint> stress_stretch_curve(const Material& material, CurveMode mode, double from,
+                                             double to, int steps);
 
 }  // namespace sinew

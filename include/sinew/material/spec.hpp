@@ -55,8 +55,9 @@ std::shared_ptr<const Material> build_material(const MaterialSpec& spec);
 
 // Strict reader of the JSON form: unknown keys, wrong types, missing fields, non-finite
 // numbers, E <= 0, nu outside (-1, 0.5), alpha <= 0, unknown families or parameters are each a
-// sinew::Error whose context is `context` followed by the JSON path (e.g. "scene.json:
-// materials[0].nu"). The result is additionally checked by build_material.
+// sinew::Error whose context is `context` followed by the JSON-pointer path of the field
+// (context "scene.json: /objects/0/material" -> "scene.json: /objects/0/material/nu"). The
+// result is additionally checked by build_material.
 MaterialSpec material_spec_from_json(const nlohmann::json& json, const std::string& context);
 
 // The inverse (parameters only where given), e.g. to echo a spec back.
