@@ -163,7 +163,7 @@ void register_table1_materials(std::vector<MaterialInfo>& out) {
                  {{"E", 3.0, "modulus (mu_Lame = E/3, lambda_Lame = 0)"}},
                  {},
                  {"E"},
-                 false,
+                 true,  // linear in its one parameter: usable as a mu-part (paper 002 §6)
                  true,
                  [](const MaterialParameters& p) { return std::make_unique<PengLandel>(v(p, "E")); }});
 
@@ -172,7 +172,7 @@ void register_table1_materials(std::vector<MaterialInfo>& out) {
                  {{"mu", 1.0, "scale (1 = the table's energy); mu_Lame = mu"}},
                  {},
                  {"mu"},
-                 false,
+                 true,  // linear in its one parameter: usable as a mu-part (paper 002 §6)
                  true,
                  [](const MaterialParameters& p) { return std::make_unique<Arap>(v(p, "mu")); }});
 
@@ -181,7 +181,7 @@ void register_table1_materials(std::vector<MaterialInfo>& out) {
                  {{"mu", 1.0, "shear modulus (mu_Lame = mu)"}},
                  {},
                  {"mu"},
-                 false,
+                 true,  // linear in its one parameter: usable as a mu-part (paper 002 §6)
                  true,
                  [](const MaterialParameters& p) { return std::make_unique<SymmetricArap>(v(p, "mu")); }});
 
@@ -191,7 +191,7 @@ void register_table1_materials(std::vector<MaterialInfo>& out) {
                  {{"mu", 1.0, "scale (1 = the table's energy); mu_Lame = 2 mu"}},
                  {},
                  {"mu"},
-                 false,
+                 true,  // linear in its one parameter: usable as a mu-part (paper 002 §6)
                  true,
                  [](const MaterialParameters& p) {
                    return std::make_unique<SymmetricDirichlet>(v(p, "mu"));
