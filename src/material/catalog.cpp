@@ -31,10 +31,8 @@ const MaterialInfo& MaterialCatalog::find(const std::string& name) const {
   throw Error(fmt::format("unknown material '{}' (known: {})", name, names), "material");
 }
 
-MaterialParameters MaterialCatalog::complete(const std::string& name,
-                                             const MaterialParameters& given) const {
-  const MaterialInfo& info = find(name);
-  const std::string where = fmt::format("material '{}'", name);
+MaterialParameters complete_parameters(const MaterialInfo& info, const MaterialParameters& given) {
+  const std::string where = fmt::format("material '{}'", info.name);
   MaterialParameters out;
   for (const auto& p : info.parameters) out.values[p.key] = p.default_value;
   for (const auto& f : info.functions) out.functions[f.key] = f.default_expression;
@@ -51,7 +49,7 @@ MaterialParameters MaterialCatalog::complete(const std::string& name,
     }
     out.values[key] = value;
   }
-  for (const auto& [key, expr] : given.functions) {
+  for (const auto& [key, expression] : given.functions) {
     if (!out.functions.count(key)) {
       std::string keys;
       for (const auto& f : info.functions) keys += (keys.empty() ? "" : ", ") + f.key;
@@ -59,9 +57,14 @@ MaterialParameters MaterialCatalog::complete(const std::string& name,
                               keys.empty() ? "none" : keys),
                   where);
     }
-    out.functions[key] = expr;
+    out.functions[key] = expression;
   }
   return out;
+}
+
+MaterialParameters MaterialCatalog::complete(const std::string& name,
+                                             const MaterialParameters& given) const {
+  return complete_parameters(find(name), given);
 }
 
 std::unique_ptr<Material> MaterialCatalog::make(const std::string& name,

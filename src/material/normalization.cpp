@@ -9,36 +9,6 @@
 
 namespace sinew {
 
-MaterialParameters complete_parameters(const MaterialInfo& info, const MaterialParameters& given) {
-  const std::string where = fmt::format("material '{}'", info.name);
-  MaterialParameters out;
-  for (const auto& p : info.parameters) out.values[p.key] = p.default_value;
-  for (const auto& f : info.functions) out.functions[f.key] = f.default_expression;
-  for (const auto& [key, value] : given.values) {
-    if (!out.values.count(key)) {
-      std::string keys;
-      for (const auto& p : info.parameters) keys += (keys.empty() ? "" : ", ") + p.key;
-      throw Error(fmt::format("unknown parameter '{}' (expected one of: {})", key,
-                              keys.empty() ? "none" : keys),
-                  where);
-    }
-    if (!std::isfinite(value)) {
-      throw Error(fmt::format("parameter '{}' is not a finite number", key), where);
-    }
-    out.values[key] = value;
-  }
-  for (const auto& [key, expression] : given.functions) {
-    if (!out.functions.count(key)) {
-      std::string keys;
-      for (const auto& f : info.functions) keys += (keys.empty() ? "" : ", ") + f.key;
-      throw Error(fmt::format("unknown function '{}' (expected one of: {})", key,
-                              keys.empty() ? "none" : keys),
-                  where);
-    }
-    out.functions[key] = expression;
-  }
-  return out;
-}
 
 namespace {
 

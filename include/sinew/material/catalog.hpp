@@ -67,6 +67,9 @@ class MaterialCatalog {
   std::vector<MaterialInfo> families_;
 };
 
+// The family's defaults with `given` applied: rejects unknown keys and non-finite values.
+MaterialParameters complete_parameters(const MaterialInfo& info, const MaterialParameters& given);
+
 // Registration, one function per group of families (each in its own source file).
 void register_paper000_materials(std::vector<MaterialInfo>& out);
 void register_table1_materials(std::vector<MaterialInfo>& out);

@@ -26,8 +26,4 @@ MaterialParameters normalize(const MaterialInfo& info, const MaterialParameters&
 MaterialParameters normalize(const MaterialInfo& info, const MaterialParameters& base,
                              const YoungPoisson& target);
 
-// `given` with the family's defaults filled in; unknown keys and non-finite values are
-// errors. (The catalog's complete() for a MaterialInfo that need not be registered.)
-MaterialParameters complete_parameters(const MaterialInfo& info, const MaterialParameters& given);
-
 }  // namespace sinew
