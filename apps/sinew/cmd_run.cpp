@@ -1,6 +1,8 @@
 // `sinew run SCENE.json [--out DIR] [--frames N] [--threads N] [--quiet] [--resume]`.
 #include "cmd_run.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <fmt/format.h>
 #include <memory>
 #include <tbb/global_control.h>
@@ -51,14 +53,17 @@ void run(const Options& o, int& exit_code) {
       }
     };
   }
+  const auto t0 = std::chrono::steady_clock::now();
   const RunSummary s = run_scene(scene, ro);
-  const int bad = static_cast<int>(std::count_if(s.frames.begin(), s.frames.end(), [](const auto& f) { return !f.converged; }));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto bad = std::find_if(s.frames.begin(), s.frames.end(), [](const FrameRecord& f) { return !f.converged; });
   if (!o.quiet) {
-    fmt::print("{} vertices, {} elements; {} frames; results in {}\n", s.vertices, s.elements, s.frames.size(),
-               ro.out_dir.string());
+    fmt::print("{} vertices, {} elements, {} frame(s) in {:.2f} s\n", s.vertices, s.elements, s.frames.size(), seconds);
+    fmt::print("results in {} (open simulation.pvd in ParaView; metrics in summary.json)\n", ro.out_dir.string());
   }
-  if (bad) {
-    fmt::print(stderr, "sinew: warning: {} frame(s) did not converge (see {})\n", bad, (ro.out_dir / "summary.json").string());
+  if (bad != s.frames.end()) {
+    fmt::print(stderr, "sinew: frame {} did not converge: {}; the run stopped there (see {})\n", bad->frame,
+               bad->failure, (ro.out_dir / "summary.json").string());
     exit_code = 3;
   }
 }

@@ -78,6 +78,7 @@ struct OutputSpec {
 
 struct Scene {
   std::filesystem::path file;  // where it was loaded from
+  std::string description;     // free text, echoed to summary.json
   MeshSpec mesh;
   MaterialSpec material;
   double density = 1000.0;

@@ -12,6 +12,9 @@
 
 namespace sinew {
 
+// A frame's motion is halved up to this many times when Newton fails on the whole step.
+inline constexpr int kMaxMotionSplits = 6;
+
 struct FrameRecord {
   int frame = 0;
   bool converged = false;
@@ -22,6 +25,9 @@ struct FrameRecord {
   double energy = 0.0;
   double volume = 0.0;
   double min_J = 0.0;
+  // Total force the kinematic boundary conditions exert on the body; at equilibrium it
+  // balances the external loads and is the measured force of a stretch or twist test.
+  Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
   double seconds = 0.0;
   double assembly_seconds = 0.0;
   double solve_seconds = 0.0;
@@ -47,11 +53,17 @@ struct RunOptions {
 struct RunSummary {
   Eigen::Index vertices = 0, elements = 0;
   double rest_volume = 0.0;
-  std::vector<FrameRecord> frames;  // including frames from before a resume
+  Eigen::Vector3d external_force = Eigen::Vector3d::Zero();  // sum of gravity, point loads, tractions
+  std::vector<FrameRecord> frames;  // including frames from before a resume; stops at the
+                                    // first frame that did not converge
   Eigen::VectorXd x;                // final positions
   bool all_converged() const;
 };
 
+// Builds and validates the whole model (mesh, material, selections, loads) before writing
+// anything; a fresh run then replaces the files of an earlier run in out_dir. The run stops
+// after the first frame that does not converge (its state is still written, for inspection;
+// the checkpoint keeps the last converged frame).
 RunSummary run_scene(const Scene& scene, const RunOptions& options);
 
 }  // namespace sinew
