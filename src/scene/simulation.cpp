@@ -71,6 +71,12 @@ std::string scene_fingerprint(const Scene& scene) {
 
 nlohmann::json vec_json(const Eigen::Vector3d& v) { return {v(0), v(1), v(2)}; }
 
+nlohmann::json reactions_json(const std::vector<Eigen::Vector3d>& forces) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& f : forces) j.push_back(vec_json(f));
+  return j;
+}
+
 nlohmann::json to_json(const FrameRecord& r) {
   return {{"frame", r.frame},
           {"converged", r.converged},
@@ -81,7 +87,7 @@ nlohmann::json to_json(const FrameRecord& r) {
           {"energy", r.energy},
           {"volume", r.volume},
           {"min_J", r.min_J},
-          {"reaction", vec_json(r.reaction)},
+          {"reactions", reactions_json(r.reactions)},
           {"seconds", r.seconds},
           {"assembly_seconds", r.assembly_seconds},
           {"solve_seconds", r.solve_seconds},
@@ -99,7 +105,7 @@ FrameRecord frame_from_json(const nlohmann::json& j) {
   r.energy = j.at("energy");
   r.volume = j.at("volume");
   r.min_J = j.at("min_J");
-  for (int i = 0; i < 3; ++i) r.reaction(i) = j.at("reaction").at(i);
+  for (const auto& f : j.at("reactions")) r.reactions.emplace_back(f.at(0), f.at(1), f.at(2));
   r.seconds = j.at("seconds");
   r.assembly_seconds = j.at("assembly_seconds");
   r.solve_seconds = j.at("solve_seconds");
@@ -162,6 +168,7 @@ struct Model {
   BoundarySurface surface;
   Eigen::VectorXd forces;  // constant external nodal forces
   std::vector<KinematicCondition> kinematics;
+  std::vector<int> boundary_owner;  // per vertex: the first boundary entry selecting it, or -1
 };
 
 Model build_model(const Scene& scene) {
@@ -189,7 +196,8 @@ Model build_model(const Scene& scene) {
   if (m.forces.squaredNorm() > 0.0) m.problem->add_form(std::make_shared<ExternalForceForm>(m.forces));
 
   // A vertex moved by two different boundary motions has no well-defined position.
-  std::vector<int> owner(mesh.num_vertices(), -1);
+  std::vector<int>& owner = m.boundary_owner;
+  owner.assign(mesh.num_vertices(), -1);
   for (size_t i = 0; i < scene.boundary.size(); ++i) {
     const auto& b = scene.boundary[i];
     const std::string where = fmt::format("{}: /boundary/{}/select", file, i);
@@ -198,7 +206,7 @@ Model build_model(const Scene& scene) {
       if (owner[v] >= 0 && !(std::holds_alternative<Pinned>(b.motion) &&
                              std::holds_alternative<Pinned>(scene.boundary[owner[v]].motion)))
         throw Error(fmt::format("vertex {} is also selected by /boundary/{} with a different motion", v, owner[v]), where);
-      owner[v] = static_cast<int>(i);
+      if (owner[v] < 0) owner[v] = static_cast<int>(i);
     }
     m.kinematics.push_back(std::move(c));
   }
@@ -270,6 +278,8 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
     for (const auto& r : summary.frames) j.push_back(to_json(r));
     return j;
   };
+  nlohmann::json boundary_names = nlohmann::json::array();
+  for (const auto& b : scene.boundary) boundary_names.push_back(b.name);
   auto write_summary = [&] {
     if (!writing) return;
     int newton = 0, linear_its = 0;
@@ -284,6 +294,7 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
                               {"density", scene.density},
                               {"rest_volume", summary.rest_volume},
                               {"external_force", vec_json(summary.external_force)},
+                              {"boundary", boundary_names},
                               {"frames_requested", frames},
                               {"frames_completed", static_cast<int>(summary.frames.size())},
                               {"total_newton_iterations", newton},
@@ -348,13 +359,13 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
     record.volume = 0.0;
     for (Eigen::Index e = 0; e < disc.num_elements(); ++e) record.volume += fields.J(e) * disc.rest_volume(e);
     record.min_J = fields.J.minCoeff();
-    // Support reaction: the unconstrained gradient of the total potential summed over the
-    // constrained DOFs (the force the boundary conditions exert on the body).
+    // Support reactions: the unconstrained gradient of the total potential at a constrained
+    // vertex is the force its boundary condition exerts there (body: -grad + support = 0).
     Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
     for (const auto& form : problem.forms()) form->add_gradient(x, g);
-    const auto& fixed = problem.fixed();
-    for (Eigen::Index i = 0; i < g.size(); ++i)
-      if (fixed[static_cast<size_t>(i)]) record.reaction(i % 3) += g(i);
+    record.reactions.assign(model.kinematics.size(), Eigen::Vector3d::Zero());
+    for (size_t v = 0; v < model.boundary_owner.size(); ++v)
+      if (model.boundary_owner[v] >= 0) record.reactions[model.boundary_owner[v]] += g.segment<3>(3 * v);
     record.seconds = std::chrono::duration<double>(Clock::now() - t_frame).count();
     summary.frames.push_back(record);
     write_frame(frame);

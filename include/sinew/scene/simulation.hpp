@@ -25,9 +25,9 @@ struct FrameRecord {
   double energy = 0.0;
   double volume = 0.0;
   double min_J = 0.0;
-  // Total force the kinematic boundary conditions exert on the body; at equilibrium it
-  // balances the external loads and is the measured force of a stretch or twist test.
-  Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
+  // Force each boundary condition (scene order) exerts on the body: the measured force of a
+  // stretch test; at equilibrium their sum balances the external loads.
+  std::vector<Eigen::Vector3d> reactions;
   double seconds = 0.0;
   double assembly_seconds = 0.0;
   double solve_seconds = 0.0;
