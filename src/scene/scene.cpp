@@ -4,7 +4,9 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
+#include <functional>
 #include <numbers>
+#include <set>
 
 #include "sinew/core/error.hpp"
 #include "sinew/io/mesh_reader.hpp"
@@ -70,6 +72,8 @@ RigidMotion parse_motion(JsonObject o) {
       key.allow({"frame", "translation", "rotation"});
       Keyframe f;
       f.frame = key.number("frame");
+      if (!k.keys.empty() && !(f.frame > k.keys.back().frame))
+        key.fail("frame", fmt::format("must be after the previous keyframe's ({} <= {})", f.frame, k.keys.back().frame));
       f.translation = key.vec3("translation", Eigen::Vector3d::Zero());
       if (key.has("rotation")) {
         JsonObject r = key.object("rotation");
@@ -269,20 +273,78 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   return scene;
 }
 
+namespace {
+
+// Tracks the JSON pointer of the value being parsed (for errors nlohmann reports without
+// one) and rejects duplicate keys, which nlohmann would otherwise resolve silently.
+class PathTracker {
+ public:
+  explicit PathTracker(std::string file) : file_(std::move(file)) {}
+
+  bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using E = nlohmann::json::parse_event_t;
+    switch (event) {
+      case E::object_start: stack_.push_back({false, 0, "", {}}); break;
+      case E::array_start: stack_.push_back({true, 0, "", {}}); break;
+      case E::key: {
+        Frame& top = stack_.back();
+        top.key = parsed.get<std::string>();
+        if (!top.seen.insert(top.key).second) throw Error("duplicate key (JSON objects need unique keys)", file_ + ": " + path());
+        break;
+      }
+      case E::object_end:
+      case E::array_end: stack_.pop_back(); next_element(); break;
+      case E::value: next_element(); break;
+    }
+    return true;
+  }
+
+  std::string path() const {
+    std::string p;
+    for (const auto& f : stack_) p += "/" + (f.array ? std::to_string(f.index) : f.key);
+    return p.empty() ? "/" : p;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    size_t index;
+    std::string key;
+    std::set<std::string> seen;
+  };
+  void next_element() {
+    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+  }
+  std::string file_;
+  std::vector<Frame> stack_;
+};
+
+// nlohmann's "[json.exception.parse_error.101] parse error at line 3, column 5: ..." without
+// the bracketed tag.
+std::string without_tag(const std::string& what) {
+  const auto close = what.find("] ");
+  return what.rfind("[json.exception", 0) == 0 && close != std::string::npos ? what.substr(close + 2) : what;
+}
+
+}  // namespace
+
 Scene load_scene(const std::filesystem::path& file) {
+  const std::string name = file.string();
   std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw Error("is a directory, not a scene file", file.string());
+  if (std::filesystem::is_directory(file, ec)) throw Error("is a directory, not a scene file", name);
   std::ifstream in(file);
-  if (!in) throw Error("cannot open scene file (missing or unreadable)", file.string());
+  if (!in) throw Error("cannot open scene file (missing or unreadable)", name);
   nlohmann::json json;
+  PathTracker tracker(name);
   try {
-    json = nlohmann::json::parse(in);
+    json = nlohmann::json::parse(in, std::ref(tracker));
   } catch (const nlohmann::json::parse_error& e) {
-    // e.what() is "[json.exception.parse_error.101] parse error at line 3, column 5: ...".
-    std::string what = e.what();
-    if (const auto close = what.find("] "); what.rfind("[json.exception", 0) == 0 && close != std::string::npos)
-      what = what.substr(close + 2);
-    throw Error(fmt::format("malformed JSON: {}", what), file.string());
+    throw Error(fmt::format("malformed JSON: {}", without_tag(e.what())), name);
+  } catch (const nlohmann::json::out_of_range& e) {
+    // 1e999 and the like: "number overflow parsing '1e999'".
+    throw Error(fmt::format("{} (numbers must be finite doubles)", without_tag(e.what())), name + ": " + tracker.path());
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("malformed JSON: {}", without_tag(e.what())), name + ": " + tracker.path());
   }
   return parse_scene(json, file);
 }
