@@ -217,8 +217,9 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   scene.description = root.string("description", "");
   const std::filesystem::path folder = file.parent_path();
   scene.mesh = parse_mesh(root.object("mesh"), folder);
+  const nlohmann::json& material = root.raw("material");
   try {
-    scene.material = material_spec_from_json(root.raw("material"), "");
+    scene.material = material_spec_from_json(material, "");
   } catch (const Error& e) {
     throw material_error(e, name);
   }
