@@ -269,7 +269,7 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   try {
     build_material(scene.material);
   } catch (const Error& e) {
-    throw material_error(e, name);
+    throw e.within(name + ": /material");  // its context names the family and parameter
   }
   return scene;
 }

@@ -3,6 +3,7 @@
 // loads, solver settings, frames and outputs. load_scene validates every field and names the
 // file, JSON path and reason of the first problem.
 #include <filesystem>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <variant>
