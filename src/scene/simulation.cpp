@@ -182,17 +182,7 @@ Model build_model(const Scene& scene) {
   m.problem->add_form(m.elastic);
   m.surface = boundary_surface(mesh);
 
-  m.forces = Eigen::VectorXd::Zero(m.disc->num_dofs());
-  if (scene.gravity.squaredNorm() > 0.0) m.forces += gravity_forces(lumped_mass(*m.disc, scene.density), scene.gravity);
-  for (size_t i = 0; i < scene.point_loads.size(); ++i) {
-    for (int v : select_vertices(mesh.vertices, scene.point_loads[i].select, fmt::format("{}: /loads/point/{}/select", file, i)))
-      m.forces.segment<3>(3 * v) += scene.point_loads[i].force;
-  }
-  for (size_t i = 0; i < scene.tractions.size(); ++i) {
-    const std::string where = fmt::format("{}: /loads/traction/{}/select", file, i);
-    m.forces += traction_forces(mesh, m.surface, select_vertices(mesh.vertices, scene.tractions[i].select, where),
-                                scene.tractions[i].traction, where);
-  }
+  m.forces = external_forces(scene, *m.disc, m.surface);
   if (m.forces.squaredNorm() > 0.0) m.problem->add_form(std::make_shared<ExternalForceForm>(m.forces));
 
   // A vertex moved by two different boundary motions has no well-defined position.
@@ -218,6 +208,23 @@ Eigen::Vector3d total_force(const Eigen::VectorXd& f) {
 }
 
 }  // namespace
+
+Eigen::VectorXd external_forces(const Scene& scene, const Discretization& disc, const BoundarySurface& surface) {
+  const std::string file = scene.file.string();
+  const VolumeMesh& mesh = disc.mesh();
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(disc.num_dofs());
+  if (scene.gravity.squaredNorm() > 0.0) f += gravity_forces(lumped_mass(disc, scene.density), scene.gravity);
+  for (size_t i = 0; i < scene.point_loads.size(); ++i) {
+    for (int v : select_vertices(mesh.vertices, scene.point_loads[i].select, fmt::format("{}: /loads/point/{}/select", file, i)))
+      f.segment<3>(3 * v) += scene.point_loads[i].force;
+  }
+  for (size_t i = 0; i < scene.tractions.size(); ++i) {
+    const std::string where = fmt::format("{}: /loads/traction/{}/select", file, i);
+    f += traction_forces(mesh, surface, select_vertices(mesh.vertices, scene.tractions[i].select, where),
+                         scene.tractions[i].traction, where);
+  }
+  return f;
+}
 
 RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   const auto t_start = Clock::now();
@@ -323,11 +330,12 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
     auto newton_progress = [&](const NewtonIterate& it) {
       if (options.progress) options.progress({frame, frames, it.iteration, it.residual, elapsed(), false, nullptr});
     };
-    // Solve at the frame's boundary positions; if the jump is too large (invalid start or no
-    // convergence), split the motion since the last solved state into halves.
-    double solved = frame - 1.0;
-    int splits = 0;
-    double step = 1.0;
+    // Solve at the frame's boundary positions. If the jump is too large (an invalid start or
+    // no convergence), halve the step from the last solved state, down to 1/2^kMaxMotionSplits
+    // of the frame's motion, and lengthen it again after each success.
+    const double min_step = 1.0 / (1 << kMaxMotionSplits);
+    double solved = frame - 1.0, step = 1.0;
+    record.substeps = 0;
     while (solved < frame) {
       const double target = std::min<double>(frame, solved + step);
       Eigen::VectorXd trial = x;
@@ -344,13 +352,14 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
       if (r.converged) {
         x = trial;
         solved = target;
-        if (target < frame) record.substeps += 1;
-      } else if (splits < kMaxMotionSplits) {
-        ++splits;
+        record.substeps += 1;
+        step = std::min(1.0, 2.0 * step);
+      } else if (step > min_step) {
         step *= 0.5;
       } else {
         x = trial;  // kept for inspection (written below), never continued from
-        record.failure = fmt::format("{} (after splitting the frame's motion {} times)", r.failure, splits);
+        record.failure = fmt::format("{} (even with the frame's motion split into steps of 1/{})", r.failure,
+                                     1 << kMaxMotionSplits);
         break;
       }
     }

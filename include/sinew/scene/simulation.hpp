@@ -8,11 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "sinew/fem/discretization.hpp"
+#include "sinew/mesh/surface.hpp"
 #include "sinew/scene/scene.hpp"
 
 namespace sinew {
 
-// A frame's motion is halved up to this many times when Newton fails on the whole step.
+// When Newton fails on a frame's whole boundary motion, the step is halved, down to
+// 1/2^kMaxMotionSplits of the frame, before the frame is declared unconverged.
 inline constexpr int kMaxMotionSplits = 6;
 
 struct FrameRecord {
@@ -20,7 +23,7 @@ struct FrameRecord {
   bool converged = false;
   int newton_iterations = 0;
   int linear_iterations = 0;
-  int substeps = 1;  // > 1 when the frame's boundary motion had to be split
+  int substeps = 1;  // converged solves; > 1 when the frame's boundary motion had to be split
   double residual = 0.0;
   double energy = 0.0;
   double volume = 0.0;
@@ -59,6 +62,13 @@ struct RunSummary {
   Eigen::VectorXd x;                // final positions
   bool all_converged() const;
 };
+
+// The scene's constant external nodal forces (x[3 v + i] layout): gravity on the lumped masses,
+// point loads (the force on each selected vertex), and tractions (force per rest area on the
+// boundary faces whose vertices are all selected, distributed as t * integral of N_a over the
+// face). Throws a sinew::Error naming the load's JSON path if a selection is empty or a
+// traction selects no face.
+Eigen::VectorXd external_forces(const Scene& scene, const Discretization& disc, const BoundarySurface& surface);
 
 // Builds and validates the whole model (mesh, material, selections, loads) before writing
 // anything; a fresh run then replaces the files of an earlier run in out_dir. The run stops
