@@ -427,5 +427,26 @@ TEST(SceneFile, EveryExampleSceneLoadsAndBuilds) {
   EXPECT_GE(count, 20);
 }
 
+TEST(SceneFile, DocumentationShowsEveryFeatureSceneVerbatim) {
+  // docs/scene-format.md reproduces each examples/features scene after a marker comment
+  // "<!-- examples/features/NAME.json -->"; the two must not drift apart.
+  const std::string doc = test::read_file(test::data_path("../../docs/scene-format.md"));
+  ASSERT_FALSE(doc.empty());
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(examples_dir() / "features")) {
+    if (entry.path().extension() != ".json") continue;
+    SCOPED_TRACE(entry.path().string());
+    const std::string marker = "<!-- examples/features/" + entry.path().filename().string() + " -->\n```json\n";
+    const auto at = doc.find(marker);
+    ASSERT_NE(at, std::string::npos) << "not shown in docs/scene-format.md";
+    const auto begin = at + marker.size();
+    const auto end = doc.find("```", begin);
+    ASSERT_NE(end, std::string::npos);
+    EXPECT_EQ(json::parse(doc.substr(begin, end - begin)), json::parse(test::read_file(entry.path())));
+    ++count;
+  }
+  EXPECT_GE(count, 20);
+}
+
 }  // namespace
 }  // namespace sinew

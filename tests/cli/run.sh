@@ -30,8 +30,8 @@ grep -q "^81 vertices, 32 elements, 4 frame(s)" "$TMP/out" || fail "no size line
 for f in simulation.pvd summary.json checkpoint.json frame_0000.vtu frame_0004.vtu surface_0000.obj surface_0004.obj; do
   [[ -s $TMP/a/$f ]] || fail "missing output $f"
 done
-if ls "$TMP/a" | grep -q -v -E '^(simulation\.pvd|summary\.json|checkpoint\.json|frame_000[0-4]\.vtu|surface_000[0-4]\.obj)$'; then
-  fail "unexpected files (temporaries left behind?): $(ls "$TMP/a")"
+if ls -A "$TMP/a" | grep -q -v -E '^(simulation\.pvd|summary\.json|checkpoint\.json|frame_000[0-4]\.vtu|surface_000[0-4]\.obj)$'; then
+  fail "unexpected files (temporaries left behind?): $(ls -A "$TMP/a")"
 fi
 grep -c "<DataSet " "$TMP/a/simulation.pvd" | grep -qx 5 || fail "simulation.pvd does not list 5 frames"
 "$PY" - "$TMP/a/summary.json" <<'EOF' || fail "summary.json content"
