@@ -54,12 +54,19 @@ void run(const Options& o, int& exit_code) {
     };
   }
   const auto t0 = std::chrono::steady_clock::now();
-  const RunSummary s = run_scene(scene, ro);
+  RunSummary s;
+  try {
+    s = run_scene(scene, ro);
+  } catch (...) {
+    if (tty && !o.quiet) fmt::print(stderr, "\r\033[K");  // clear the live line for the error line
+    throw;
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto bad = std::find_if(s.frames.begin(), s.frames.end(), [](const FrameRecord& f) { return !f.converged; });
   if (!o.quiet) {
     fmt::print("{} vertices, {} elements, {} frame(s) in {:.2f} s\n", s.vertices, s.elements, s.frames.size(), seconds);
-    fmt::print("results in {} (open simulation.pvd in ParaView; metrics in summary.json)\n", ro.out_dir.string());
+    fmt::print("results in {} ({}metrics in summary.json)\n", ro.out_dir.string(),
+               scene.output.vtu ? "open simulation.pvd in ParaView; " : "");
   }
   if (bad != s.frames.end()) {
     fmt::print(stderr, "sinew: frame {} did not converge: {}; the run stopped there (see {})\n", bad->frame,

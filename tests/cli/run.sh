@@ -19,6 +19,11 @@ cat >"$TMP/bar.json" <<'EOF'
 }
 EOF
 
+expect_ok run --help
+for flag in --out --frames --threads --quiet --resume scene-format.md; do
+  grep -q -- "$flag" "$TMP/out" || fail "run --help lacks $flag"
+done
+
 # Plain progress lines on a non-terminal stderr; results line on stdout.
 run run "$TMP/bar.json" --out "$TMP/a"
 [[ $RC -eq 0 ]] || fail "bar.json exited $RC: $(cat "$TMP/err")"
