@@ -1,6 +1,8 @@
 // `sinew run SCENE.json [--out DIR] [--frames N] [--threads N] [--quiet] [--resume]`.
 #include "cmd_run.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <fmt/format.h>
 #include <memory>
 #include <tbb/global_control.h>
@@ -51,14 +53,24 @@ void run(const Options& o, int& exit_code) {
       }
     };
   }
-  const RunSummary s = run_scene(scene, ro);
-  const int bad = static_cast<int>(std::count_if(s.frames.begin(), s.frames.end(), [](const auto& f) { return !f.converged; }));
-  if (!o.quiet) {
-    fmt::print("{} vertices, {} elements; {} frames; results in {}\n", s.vertices, s.elements, s.frames.size(),
-               ro.out_dir.string());
+  const auto t0 = std::chrono::steady_clock::now();
+  RunSummary s;
+  try {
+    s = run_scene(scene, ro);
+  } catch (...) {
+    if (tty && !o.quiet) fmt::print(stderr, "\r\033[K");  // clear the live line for the error line
+    throw;
   }
-  if (bad) {
-    fmt::print(stderr, "sinew: warning: {} frame(s) did not converge (see {})\n", bad, (ro.out_dir / "summary.json").string());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto bad = std::find_if(s.frames.begin(), s.frames.end(), [](const FrameRecord& f) { return !f.converged; });
+  if (!o.quiet) {
+    fmt::print("{} vertices, {} elements, {} frame(s) in {:.2f} s\n", s.vertices, s.elements, s.frames.size(), seconds);
+    fmt::print("results in {} ({}metrics in summary.json)\n", ro.out_dir.string(),
+               scene.output.vtu ? "open simulation.pvd in ParaView; " : "");
+  }
+  if (bad != s.frames.end()) {
+    fmt::print(stderr, "sinew: frame {} did not converge: {}; the run stopped there (see {})\n", bad->frame,
+               bad->failure, (ro.out_dir / "summary.json").string());
     exit_code = 3;
   }
 }

@@ -16,10 +16,15 @@ class JsonObject {
   // `file` names the source in errors; `path` is the JSON pointer of this object.
   JsonObject(const nlohmann::json& json, std::string file, std::string path = "");
 
+  // Declares the keys this object may hold and rejects any other at once, listing the
+  // allowed ones, so a misspelt key is reported before whatever its absence would cause.
+  void allow(const std::vector<std::string>& keys);
+
   bool has(const std::string& key) const;
   const std::string& path() const { return path_; }
   const std::string& file() const { return file_; }
-  std::string path_of(const std::string& key) const { return path_ + "/" + key; }
+  // The JSON pointer of a member ("" names this object itself).
+  std::string path_of(const std::string& key) const;
   [[noreturn]] void fail(const std::string& key, const std::string& reason) const;
 
   const nlohmann::json& raw(const std::string& key);  // marks it read; throws if missing
@@ -47,9 +52,11 @@ class JsonObject {
 
  private:
   const nlohmann::json& get(const std::string& key);
+  [[noreturn]] void unknown(const std::string& key) const;
   const nlohmann::json& json_;
   std::string file_, path_;
   std::set<std::string> read_;
+  std::vector<std::string> allowed_;
 };
 
 }  // namespace sinew

@@ -3,6 +3,7 @@
 // loads, solver settings, frames and outputs. load_scene validates every field and names the
 // file, JSON path and reason of the first problem.
 #include <filesystem>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <variant>
@@ -78,6 +79,7 @@ struct OutputSpec {
 
 struct Scene {
   std::filesystem::path file;  // where it was loaded from
+  std::string description;     // free text, echoed to summary.json
   MeshSpec mesh;
   MaterialSpec material;
   double density = 1000.0;

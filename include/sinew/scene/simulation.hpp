@@ -8,20 +8,29 @@
 #include <string>
 #include <vector>
 
+#include "sinew/fem/discretization.hpp"
+#include "sinew/mesh/surface.hpp"
 #include "sinew/scene/scene.hpp"
 
 namespace sinew {
+
+// When Newton fails on a frame's whole boundary motion, the step is halved, down to
+// 1/2^kMaxMotionSplits of the frame, before the frame is declared unconverged.
+inline constexpr int kMaxMotionSplits = 6;
 
 struct FrameRecord {
   int frame = 0;
   bool converged = false;
   int newton_iterations = 0;
   int linear_iterations = 0;
-  int substeps = 1;  // > 1 when the frame's boundary motion had to be split
+  int substeps = 1;  // converged solves; > 1 when the frame's boundary motion had to be split
   double residual = 0.0;
   double energy = 0.0;
   double volume = 0.0;
   double min_J = 0.0;
+  // Force each boundary condition (scene order) exerts on the body: the measured force of a
+  // stretch test; at equilibrium their sum balances the external loads.
+  std::vector<Eigen::Vector3d> reactions;
   double seconds = 0.0;
   double assembly_seconds = 0.0;
   double solve_seconds = 0.0;
@@ -47,11 +56,24 @@ struct RunOptions {
 struct RunSummary {
   Eigen::Index vertices = 0, elements = 0;
   double rest_volume = 0.0;
-  std::vector<FrameRecord> frames;  // including frames from before a resume
+  Eigen::Vector3d external_force = Eigen::Vector3d::Zero();  // sum of gravity, point loads, tractions
+  std::vector<FrameRecord> frames;  // including frames from before a resume; stops at the
+                                    // first frame that did not converge
   Eigen::VectorXd x;                // final positions
   bool all_converged() const;
 };
 
+// The scene's constant external nodal forces (x[3 v + i] layout): gravity on the lumped masses,
+// point loads (the force on each selected vertex), and tractions (force per rest area on the
+// boundary faces whose vertices are all selected, distributed as t * integral of N_a over the
+// face). Throws a sinew::Error naming the load's JSON path if a selection is empty or a
+// traction selects no face.
+Eigen::VectorXd external_forces(const Scene& scene, const Discretization& disc, const BoundarySurface& surface);
+
+// Builds and validates the whole model (mesh, material, selections, loads) before writing
+// anything; a fresh run then replaces the files of an earlier run in out_dir. The run stops
+// after the first frame that does not converge (its state is still written, for inspection;
+// the checkpoint keeps the last converged frame).
 RunSummary run_scene(const Scene& scene, const RunOptions& options);
 
 }  // namespace sinew
