@@ -199,12 +199,6 @@ SolverSpec parse_solver(JsonObject o) {
 
 // The material reader joins keys with '.' ("nu", "mix.alpha_mu"); scene errors use JSON
 // pointers, so "/material/mix/alpha_mu".
-Error material_error(const Error& e, const std::string& file) {
-  std::string where = e.context();
-  if (where.empty() || where == "material") return Error(e.message(), file + ": /material");
-  std::replace(where.begin(), where.end(), '.', '/');
-  return Error(e.message(), file + ": /material/" + where);
-}
 
 }  // namespace
 
@@ -218,11 +212,7 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   const std::filesystem::path folder = file.parent_path();
   scene.mesh = parse_mesh(root.object("mesh"), folder);
   const nlohmann::json& material = root.raw("material");
-  try {
-    scene.material = material_spec_from_json(material, "");
-  } catch (const Error& e) {
-    throw material_error(e, name);
-  }
+  scene.material = material_spec_from_json(material, name + ": /material");
   scene.density = root.positive("density", scene.density);
   if (root.has("boundary")) {
     for (JsonObject b : root.objects("boundary")) {
