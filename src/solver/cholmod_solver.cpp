@@ -13,8 +13,10 @@ class CholmodSolver final : public LinearSolver {
  public:
   std::string name() const override { return "cholmod"; }
 
-  LinearSolveReport solve(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
-                          Eigen::VectorXd& x, double) override {
+  LinearSolveReport solve(const LinearOperator& op, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                          double) override {
+    if (!op.matrix()) throw Error("CHOLMOD needs an assembled matrix; use pcg with a matrix-free operator", "solver.linear");
+    const Eigen::SparseMatrix<double>& A = *op.matrix();
     if (!same_pattern(A)) {
       llt_.analyzePattern(A);
       remember_pattern(A);

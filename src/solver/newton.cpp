@@ -43,7 +43,7 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
       return report;
     }
     t0 = std::chrono::steady_clock::now();
-    const Eigen::SparseMatrix<double>& H = problem.hessian(x);
+    const LinearOperator& H = problem.hessian(x);
     report.assembly_seconds += seconds_since(t0);
 
     if (s.eisenstat_walker && it > 0) {

@@ -65,8 +65,12 @@ class PcgSolver final : public LinearSolver {
  public:
   PcgSolver(std::string name, int max_iterations) : name_(std::move(name)) { cg_.setMaxIterations(max_iterations); }
   std::string name() const override { return name_; }
-  LinearSolveReport solve(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
-                          Eigen::VectorXd& x, double tolerance) override {
+  LinearSolveReport solve(const LinearOperator& op, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                          double tolerance) override {
+    // Eigen's CG runs on the assembled matrix; a matrix-free operator needs a CG over
+    // LinearOperator::apply, which arrives with the matrix-free backend.
+    if (!op.matrix()) throw Error("this PCG needs an assembled matrix", "solver.linear");
+    const Eigen::SparseMatrix<double>& A = *op.matrix();
     cg_.setTolerance(tolerance);
     cg_.compute(A);
     x = cg_.solve(b);  // zero initial guess: Newton directions are solved afresh

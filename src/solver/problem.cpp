@@ -48,9 +48,10 @@ void Problem::ensure_pattern() {
   std::vector<std::vector<int>> cliques;
   for (const auto& f : forms_) f->couplings(cliques);
   hessian_ = std::make_unique<BlockHessian>(num_vertices_, cliques);
+  hessian_operator_ = std::make_unique<SparseOperator>(hessian_->matrix());
 }
 
-const Eigen::SparseMatrix<double>& Problem::hessian(const Eigen::VectorXd& x) {
+const LinearOperator& Problem::hessian(const Eigen::VectorXd& x) {
   ensure_pattern();
   hessian_->set_zero();
   for (const auto& f : forms_) f->add_hessian(x, *hessian_);
@@ -61,7 +62,7 @@ const Eigen::SparseMatrix<double>& Problem::hessian(const Eigen::VectorXd& x) {
       if (fixed_[it.row()] || fixed_[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
     }
   });
-  return A;
+  return *hessian_operator_;
 }
 
 }  // namespace sinew

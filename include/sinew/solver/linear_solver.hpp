@@ -5,6 +5,8 @@
 #include <memory>
 #include <string>
 
+#include "sinew/solver/linear_operator.hpp"
+
 namespace sinew {
 
 struct LinearSolveReport {
@@ -20,7 +22,7 @@ class LinearSolver {
   // Solves A x = b for symmetric positive (semi-)definite A. The sparsity pattern of A may be
   // reused between calls; the symbolic analysis is redone only when it changes. `tolerance`
   // is the relative residual target for iterative solvers (ignored by direct ones).
-  virtual LinearSolveReport solve(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b,
+  virtual LinearSolveReport solve(const LinearOperator& A, const Eigen::VectorXd& b,
                                   Eigen::VectorXd& x, double tolerance) = 0;
 };
 

@@ -7,6 +7,7 @@
 
 #include "sinew/fem/block_hessian.hpp"
 #include "sinew/fem/form.hpp"
+#include "sinew/solver/linear_operator.hpp"
 
 namespace sinew {
 
@@ -23,7 +24,9 @@ class Problem {
 
   double value(const Eigen::VectorXd& x) const;            // +inf where some form is invalid
   Eigen::VectorXd gradient(const Eigen::VectorXd& x) const;  // zero at fixed DOFs
-  const Eigen::SparseMatrix<double>& hessian(const Eigen::VectorXd& x);  // Dirichlet applied
+  // The projected Hessian with Dirichlet rows/columns replaced by the identity, as an operator
+  // (valid until the next call).
+  const LinearOperator& hessian(const Eigen::VectorXd& x);
   bool is_valid(const Eigen::VectorXd& x) const;
 
  private:
@@ -32,6 +35,7 @@ class Problem {
   std::vector<std::shared_ptr<Form>> forms_;
   std::vector<char> fixed_;
   std::unique_ptr<BlockHessian> hessian_;
+  std::unique_ptr<SparseOperator> hessian_operator_;
 };
 
 }  // namespace sinew

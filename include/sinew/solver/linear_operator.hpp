@@ -1,0 +1,36 @@
+#pragma once
+// The Newton system's matrix as an operator, so Newton never depends on how it is stored:
+// today an assembled sparse matrix; a matrix-free, multigrid or GPU backend implements the
+// same interface (apply, block diagonal) and plugs in without touching the Newton loop.
+#include <Eigen/Sparse>
+
+#include "sinew/core/types.hpp"
+
+namespace sinew {
+
+class LinearOperator {
+ public:
+  virtual ~LinearOperator() = default;
+  virtual Eigen::Index rows() const = 0;
+  // y = A x
+  virtual void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const = 0;
+  // The 3x3 diagonal block of vertex v (for Jacobi-type preconditioners).
+  virtual Mat3 diagonal_block(Eigen::Index v) const = 0;
+  // The assembled matrix when there is one (direct solvers need it), else nullptr.
+  virtual const Eigen::SparseMatrix<double>* matrix() const { return nullptr; }
+};
+
+// A view of an assembled symmetric sparse matrix (not owning it).
+class SparseOperator final : public LinearOperator {
+ public:
+  explicit SparseOperator(const Eigen::SparseMatrix<double>& A) : A_(&A) {}
+  Eigen::Index rows() const override { return A_->rows(); }
+  void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override { y = (*A_) * x; }
+  Mat3 diagonal_block(Eigen::Index v) const override { return Mat3(A_->block(3 * v, 3 * v, 3, 3)); }
+  const Eigen::SparseMatrix<double>* matrix() const override { return A_; }
+
+ private:
+  const Eigen::SparseMatrix<double>* A_;
+};
+
+}  // namespace sinew
