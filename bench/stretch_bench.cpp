@@ -3,13 +3,15 @@
 // per step, peak memory and the final volume change, printed as tables with ratios against the
 // smallest size and against stable Neo-Hookean.
 //
-//   stretch_bench [--sizes 16,33,67] [--models snh,filtered,fixed,corot] [--frames 24]
-//                 [--run-frames 67:3] [--newton-cap 100] [--cg-cap 10000] [--threads N]
+//   stretch_bench [--sizes 16,33,67] [--models snh,filtered,fixed,corot] [--frames 12]
+//                 [--run-frames 67:1,corot@33:5] [--newton-cap 100] [--cg-cap 10000]
+//                 [--caps corot:20:1000] [--threads N]
 //
 // Each (size, model) runs in its own child process (this program re-executed with --child), so
-// the peak resident memory reported is that run's alone. --run-frames D:K runs only the first K
-// of the frames at diameter D (the same per-frame motion, a smaller final stretch) when the
-// whole test would take too long.
+// the peak resident memory reported is that run's alone. --run-frames D:K (or MODEL@D:K) runs
+// only the first K of the frames at diameter D (the same per-frame motion, a smaller final
+// stretch) when the whole test would take too long; --caps MODEL:NEWTON:CG overrides the
+// iteration caps for one model (co-rotational does not converge past ~2.4x).
 #include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
@@ -37,7 +39,7 @@ const std::map<std::string, std::string> kModels = {{"snh", "stable_neo_hookean"
                                                     {"corot", "corotational"}};
 
 struct Settings {
-  int frames = 24;
+  int frames = 12;
   int newton_cap = 100;
   int cg_cap = 10000;
   double linear_tolerance = 1e-3;
@@ -105,6 +107,7 @@ struct Row {
   long newton = 0, cg = 0;
   int max_newton = 0;
   double seconds = 0, assembly = 0, solve = 0, rss = 0, volume_change = 0, stretch = 0, min_J = 0;
+  int newton_cap = 0, cg_cap = 0;
 };
 
 Row row_from(const nlohmann::json& j, const std::string& model, double full_stretch) {
@@ -136,7 +139,7 @@ Row row_from(const nlohmann::json& j, const std::string& model, double full_stre
 
 int main(int argc, char** argv) {
   CLI::App app("Paper 000 stretch test as a solver benchmark");
-  std::string sizes = "16,33,67", models = "snh,filtered,fixed,corot", run_frames_text;
+  std::string sizes = "16,33,67", models = "snh,filtered,fixed,corot", run_frames_text, caps_text;
   Settings s;
   bool child = false;
   int child_diameter = 0, child_run_frames = 0;
@@ -145,6 +148,7 @@ int main(int argc, char** argv) {
   app.add_option("--models", models, "snh, filtered, fixed, corot (comma-separated)");
   app.add_option("--frames", s.frames, "frames for the whole 3.4x stretch");
   app.add_option("--run-frames", run_frames_text, "D:K,... run only the first K frames at diameter D");
+  app.add_option("--caps", caps_text, "MODEL:NEWTON:CG,... per-model iteration caps");
   app.add_option("--newton-cap", s.newton_cap, "Newton iterations per frame at most");
   app.add_option("--cg-cap", s.cg_cap, "CG iterations per Newton iteration at most");
   app.add_option("--linear-tolerance", s.linear_tolerance, "relative CG tolerance");
@@ -158,13 +162,25 @@ int main(int argc, char** argv) {
   try {
     if (child) return run_child(child_diameter, child_family, child_run_frames, s);
 
-    std::map<int, int> run_frames;
-    if (!run_frames_text.empty()) {
+    // (model or "", diameter) -> frames to run; model -> (Newton cap, CG cap).
+    std::map<std::pair<std::string, int>, int> run_frames;
+    std::map<std::string, std::pair<int, int>> caps;
+    {
       std::stringstream ss(run_frames_text);
       for (std::string item; std::getline(ss, item, ',');) {
-        const auto colon = item.find(':');
-        if (colon == std::string::npos) throw Error("expected D:K", "--run-frames");
-        run_frames[std::stoi(item.substr(0, colon))] = std::stoi(item.substr(colon + 1));
+        const auto at = item.find('@'), colon = item.find(':');
+        if (colon == std::string::npos) throw Error("expected D:K or MODEL@D:K, got '" + item + "'", "--run-frames");
+        const std::string model = at == std::string::npos ? "" : item.substr(0, at);
+        const size_t d0 = at == std::string::npos ? 0 : at + 1;
+        run_frames[{model, std::stoi(item.substr(d0, colon - d0))}] = std::stoi(item.substr(colon + 1));
+      }
+    }
+    {
+      std::stringstream ss(caps_text);
+      for (std::string item; std::getline(ss, item, ',');) {
+        const auto a = item.find(':'), b = item.rfind(':');
+        if (a == std::string::npos || a == b) throw Error("expected MODEL:NEWTON:CG, got '" + item + "'", "--caps");
+        caps[item.substr(0, a)] = {std::stoi(item.substr(a + 1, b - a - 1)), std::stoi(item.substr(b + 1))};
       }
     }
     std::vector<std::string> model_keys;
@@ -181,11 +197,15 @@ int main(int argc, char** argv) {
     std::vector<Row> rows;
     for (int d : parse_ints(sizes)) {
       for (const auto& key : model_keys) {
-        const int k = run_frames.count(d) ? std::min(run_frames[d], s.frames) : s.frames;
+        int k = s.frames;
+        if (run_frames.count({"", d})) k = run_frames[{"", d}];
+        if (run_frames.count({key, d})) k = run_frames[{key, d}];
+        k = std::min(k, s.frames);
+        const auto [newton_cap, cg_cap] = caps.count(key) ? caps[key] : std::make_pair(s.newton_cap, s.cg_cap);
         const std::string cmd = fmt::format(
             "'{}' --child --child-diameter {} --child-family {} --child-run-frames {} --frames {} "
             "--newton-cap {} --cg-cap {} --linear-tolerance {} --threads {}",
-            self.string(), d, kModels.at(key), k, s.frames, s.newton_cap, s.cg_cap, s.linear_tolerance, s.threads);
+            self.string(), d, kModels.at(key), k, s.frames, newton_cap, cg_cap, s.linear_tolerance, s.threads);
         std::fprintf(stderr, "running D=%d %s (%d of %d frames)\n", d, kModels.at(key).c_str(), k, s.frames);
         FILE* pipe = popen(cmd.c_str(), "r");
         if (!pipe) throw Error("cannot start a child run", cmd);
@@ -194,6 +214,8 @@ int main(int argc, char** argv) {
         while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
         if (pclose(pipe) != 0 || text.empty()) throw Error("child run failed", cmd);
         rows.push_back(row_from(nlohmann::json::parse(text), key, full_stretch));
+        rows.back().newton_cap = newton_cap;
+        rows.back().cg_cap = cg_cap;
       }
     }
 
@@ -205,17 +227,17 @@ int main(int argc, char** argv) {
       if (!smallest.count(r.model)) smallest[r.model] = &r;
     }
     std::printf("\nStretch benchmark (paper 000 Fig. 5-6): nu = 0.49, E = 1e5, |residual| < 1e-2, PCG block-Jacobi, "
-                "CG tolerance %g, caps %d Newton / %d CG, %d frames for 3.4x\n\n",
-                s.linear_tolerance, s.newton_cap, s.cg_cap, s.frames);
-    std::printf("| D | model | hexes | DOFs | frames (conv/run) | stretch | Newton/step (max) | CG/step | CG/Newton | "
-                "assembly ms/it | solve ms/it | total s | peak MB | volume %% |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                "CG tolerance %g, %d frames for 3.4x; threads: %s\n\n",
+                s.linear_tolerance, s.frames, s.threads > 0 ? std::to_string(s.threads).c_str() : "all cores");
+    std::printf("| D | model | hexes | DOFs | caps (Newton/CG) | frames (conv/run) | stretch | Newton/step (max) | CG/step | "
+                "CG/Newton | assembly ms/it | solve ms/it | total s | peak MB | volume %% | min J |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& r : rows) {
       const double it = std::max<long>(1, r.newton);
-      std::printf("| %d | %s | %ld | %ld | %d/%d | %.2f | %.1f (%d) | %.0f | %.0f | %.1f | %.1f | %.1f | %.0f | %+.2f |\n",
-                  r.diameter, r.model.c_str(), r.hexes, r.dofs, r.converged, r.frames_run, r.stretch,
+      std::printf("| %d | %s | %ld | %ld | %d/%d | %d/%d | %.2f | %.1f (%d) | %.0f | %.0f | %.1f | %.1f | %.1f | %.0f | %+.2f | %.3f |\n",
+                  r.diameter, r.model.c_str(), r.hexes, r.dofs, r.newton_cap, r.cg_cap, r.converged, r.frames_run, r.stretch,
                   static_cast<double>(r.newton) / r.frames_run, r.max_newton, static_cast<double>(r.cg) / r.frames_run,
-                  r.cg / it, 1e3 * r.assembly / it, 1e3 * r.solve / it, r.seconds, r.rss, r.volume_change);
+                  r.cg / it, 1e3 * r.assembly / it, 1e3 * r.solve / it, r.seconds, r.rss, r.volume_change, r.min_J);
     }
     std::printf("\nRatios: CG and time against stable Neo-Hookean at the same size (paper: filtered 0.83x CG, "
                 "5.3x time; fixed co-rotational 2.3x CG, 1.43x time); per-DOF cost of a Newton iteration against the "
