@@ -133,30 +133,14 @@ MaterialSpec material_spec_from_options(const MaterialOptions& o) {
   for (const auto& text : o.params) {
     const auto [key, value] = split_key_value(text, "--param");
     const std::string flag = "--param " + key;
-    bool known = false;
-    for (const auto& p : info.parameters) known = known || p.key == key;
-    if (!known) {
-      std::string keys;
-      for (const auto& p : info.parameters) keys += (keys.empty() ? "" : ", ") + p.key;
-      throw Error(fmt::format("unknown parameter of '{}' (expected one of: {})", info.name,
-                              keys.empty() ? "none" : keys),
-                  flag);
-    }
+    check_parameter_key(info, key, flag);
     if (spec.parameters.values.count(key)) throw Error("given twice", flag);
     spec.parameters.values[key] = parse_number(value, flag);
   }
   for (const auto& text : o.fns) {
     const auto [key, expression] = split_key_value(text, "--fn");
     const std::string flag = "--fn " + key;
-    bool known = false;
-    for (const auto& f : info.functions) known = known || f.key == key;
-    if (!known) {
-      std::string keys;
-      for (const auto& f : info.functions) keys += (keys.empty() ? "" : ", ") + f.key;
-      throw Error(fmt::format("unknown function of '{}' (expected one of: {})", info.name,
-                              keys.empty() ? "none" : keys),
-                  flag);
-    }
+    check_function_key(info, key, flag);
     if (spec.parameters.functions.count(key)) throw Error("given twice", flag);
     spec.parameters.functions[key] = expression;
   }

@@ -31,32 +31,40 @@ const MaterialInfo& MaterialCatalog::find(const std::string& name) const {
   throw Error(fmt::format("unknown material '{}' (known: {})", name, names), "material");
 }
 
+void check_parameter_key(const MaterialInfo& info, const std::string& key, const std::string& context) {
+  for (const auto& p : info.parameters)
+    if (p.key == key) return;
+  std::string keys;
+  for (const auto& p : info.parameters) keys += (keys.empty() ? "" : ", ") + p.key;
+  throw Error(fmt::format("unknown parameter '{}' of '{}' (expected one of: {})", key, info.name,
+                          keys.empty() ? "none" : keys),
+              context);
+}
+
+void check_function_key(const MaterialInfo& info, const std::string& key, const std::string& context) {
+  for (const auto& f : info.functions)
+    if (f.key == key) return;
+  std::string keys;
+  for (const auto& f : info.functions) keys += (keys.empty() ? "" : ", ") + f.key;
+  throw Error(fmt::format("unknown function '{}' of '{}' (expected one of: {})", key, info.name,
+                          keys.empty() ? "none" : keys),
+              context);
+}
+
 MaterialParameters complete_parameters(const MaterialInfo& info, const MaterialParameters& given) {
   const std::string where = fmt::format("material '{}'", info.name);
   MaterialParameters out;
   for (const auto& p : info.parameters) out.values[p.key] = p.default_value;
   for (const auto& f : info.functions) out.functions[f.key] = f.default_expression;
   for (const auto& [key, value] : given.values) {
-    if (!out.values.count(key)) {
-      std::string keys;
-      for (const auto& p : info.parameters) keys += (keys.empty() ? "" : ", ") + p.key;
-      throw Error(fmt::format("unknown parameter '{}' (expected one of: {})", key,
-                              keys.empty() ? "none" : keys),
-                  where);
-    }
+    check_parameter_key(info, key, where);
     if (!std::isfinite(value)) {
       throw Error(fmt::format("parameter '{}' is not a finite number", key), where);
     }
     out.values[key] = value;
   }
   for (const auto& [key, expression] : given.functions) {
-    if (!out.functions.count(key)) {
-      std::string keys;
-      for (const auto& f : info.functions) keys += (keys.empty() ? "" : ", ") + f.key;
-      throw Error(fmt::format("unknown function '{}' (expected one of: {})", key,
-                              keys.empty() ? "none" : keys),
-                  where);
-    }
+    check_function_key(info, key, where);
     out.functions[key] = expression;
   }
   return out;

@@ -137,15 +137,7 @@ void read_parameters(const json& j, const MaterialInfo& info, const std::string&
                      MaterialParameters& out) {
   require_object(j, path);
   for (const auto& [key, value] : j.items()) {
-    bool known = false;
-    for (const auto& p : info.parameters) known = known || p.key == key;
-    if (!known) {
-      std::string keys;
-      for (const auto& p : info.parameters) keys += (keys.empty() ? "" : ", ") + p.key;
-      throw Error(fmt::format("unknown parameter of '{}' (expected one of: {})", info.name,
-                              keys.empty() ? "none" : keys),
-                  join(path, key));
-    }
+    check_parameter_key(info, key, join(path, key));
     out.values[key] = number(value, join(path, key));
   }
 }
@@ -154,15 +146,7 @@ void read_functions(const json& j, const MaterialInfo& info, const std::string& 
                     MaterialParameters& out) {
   require_object(j, path);
   for (const auto& [key, value] : j.items()) {
-    bool known = false;
-    for (const auto& f : info.functions) known = known || f.key == key;
-    if (!known) {
-      std::string keys;
-      for (const auto& f : info.functions) keys += (keys.empty() ? "" : ", ") + f.key;
-      throw Error(fmt::format("unknown function of '{}' (expected one of: {})", info.name,
-                              keys.empty() ? "none" : keys),
-                  join(path, key));
-    }
+    check_function_key(info, key, join(path, key));
     out.functions[key] = text(value, join(path, key));
   }
 }

@@ -67,6 +67,10 @@ class MaterialCatalog {
   std::vector<MaterialInfo> families_;
 };
 
+// Throw sinew::Error (with `context`) listing the family's keys if `key` is not one of them.
+void check_parameter_key(const MaterialInfo& info, const std::string& key, const std::string& context);
+void check_function_key(const MaterialInfo& info, const std::string& key, const std::string& context);
+
 // The family's defaults with `given` applied: rejects unknown keys and non-finite values.
 MaterialParameters complete_parameters(const MaterialInfo& info, const MaterialParameters& given);
 
