@@ -57,17 +57,17 @@ SolverSpec paper_solver(double linear_tolerance = 1e-3, int max_newton_iteration
 // 87 lattice cells and 306,327 hexahedra, 0.03 % from the paper's 306,406 with nearly the same
 // vertex-to-hexahedron ratio), with both end faces translated outwards a little each frame
 // until the cylinder is `stretch` times its rest length.
+inline constexpr int kPaperStretchDiameterCells = 67;
 struct StretchConfig {
   std::string family = "stable_neo_hookean";
   double E = 1e5;
   double nu = 0.49;
-  int diameter_cells = 67;
+  int diameter_cells = kPaperStretchDiameterCells;
   double length = 1.3;
   double stretch = 3.4;
   int frames = 24;
   SolverSpec solver = paper_solver();
 };
-inline constexpr int kPaperStretchDiameterCells = 67;
 
 Scene stretch_scene(const StretchConfig& config);
 // Lattice cells along the cylinder axis for a configuration.
