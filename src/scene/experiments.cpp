@@ -260,7 +260,7 @@ ScrambleResult run_scramble(const ScrambleConfig& c) {
   VolumeMesh mesh = box_lattice(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), Eigen::Vector3i::Constant(c.cells));
   if (c.element == ElementKind::Tet4) mesh = tetrahedralize_hexes(mesh);
   auto disc = std::make_shared<Discretization>(mesh, where);
-  auto form = std::make_shared<ElasticForm>(disc, build_material(normalised_material(c.family, c.E, c.nu)));
+  auto form = std::make_shared<ElasticForm>(disc, build_material(normalised_material(c.family, c.E, c.nu)), c.projection);
   Problem problem(mesh.num_vertices());
   problem.add_form(form);
 

@@ -1,5 +1,11 @@
-// Preconditioned conjugate gradients (Eigen) with Jacobi or 3x3 block-Jacobi preconditioning.
-#include <Eigen/IterativeLinearSolvers>
+// Preconditioned conjugate gradients over a LinearOperator, with Jacobi or 3x3 block-Jacobi
+// preconditioning. Written on the operator (not on Eigen::ConjugateGradient, which needs the
+// assembled matrix and multiplies with it on one core) so that the product runs in parallel
+// through SparseOperator::apply and a matrix-free operator can use the same solver.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
 #include <vector>
 
 #include "sinew/core/error.hpp"
@@ -9,77 +15,87 @@
 namespace sinew {
 namespace {
 
-// Inverts the 3x3 diagonal vertex blocks; a block that is not invertible falls back to
-// its diagonal (or identity) so the preconditioner always exists.
-class BlockJacobi3 {
+// Inverse 3x3 diagonal vertex blocks (block-Jacobi) or inverse diagonal entries (Jacobi). A
+// block that is not positive definite falls back to its diagonal, a non-positive diagonal entry
+// to 1, so the preconditioner always exists and stays symmetric positive definite.
+class Preconditioning {
  public:
-  using StorageIndex = int;
-  enum { ColsAtCompileTime = Eigen::Dynamic, MaxColsAtCompileTime = Eigen::Dynamic };
-
-  BlockJacobi3() = default;
-  template <class MatType>
-  explicit BlockJacobi3(const MatType& A) { compute(A); }
-
-  Eigen::Index rows() const { return 3 * static_cast<Eigen::Index>(inverse_.size()); }
-  Eigen::Index cols() const { return rows(); }
-
-  template <class MatType>
-  BlockJacobi3& analyzePattern(const MatType&) { return *this; }
-  template <class MatType>
-  BlockJacobi3& factorize(const MatType& A) { return compute(A); }
-  template <class MatType>
-  BlockJacobi3& compute(const MatType& A) {
-    const Eigen::Index blocks = A.rows() / 3;
-    inverse_.assign(blocks, Mat3::Zero());
-    std::vector<Mat3> diag(blocks, Mat3::Zero());
-    for (Eigen::Index c = 0; c < A.outerSize(); ++c)
-      for (typename MatType::InnerIterator it(A, c); it; ++it)
-        if (it.row() / 3 == it.col() / 3) diag[it.col() / 3](it.row() % 3, it.col() % 3) = it.value();
-    for (Eigen::Index b = 0; b < blocks; ++b) {
-      Eigen::LLT<Mat3> llt(diag[b]);
-      if (llt.info() == Eigen::Success) {
-        inverse_[b] = llt.solve(Mat3::Identity());
+  Preconditioning(const LinearOperator& op, Preconditioner kind) {
+    const Eigen::Index blocks = op.rows() / 3;
+    inverse_.resize(blocks);
+    tbb::parallel_for(Eigen::Index{0}, blocks, [&](Eigen::Index b) {
+      const Mat3 D = op.diagonal_block(b);
+      Mat3 inv = Mat3::Zero();
+      Eigen::LLT<Mat3> llt;
+      if (kind == Preconditioner::BlockJacobi3) llt.compute(D);
+      if (kind == Preconditioner::BlockJacobi3 && llt.info() == Eigen::Success) {
+        inv = llt.solve(Mat3::Identity());
       } else {
-        for (int i = 0; i < 3; ++i) inverse_[b](i, i) = diag[b](i, i) > 0 ? 1.0 / diag[b](i, i) : 1.0;
+        for (int i = 0; i < 3; ++i) inv(i, i) = D(i, i) > 0.0 ? 1.0 / D(i, i) : 1.0;
       }
-    }
-    return *this;
+      inverse_[b] = inv;
+    });
   }
 
-  template <typename Rhs, typename Dest>
-  void _solve_impl(const Rhs& b, Dest& x) const {
-    for (size_t k = 0; k < inverse_.size(); ++k) x.template segment<3>(3 * k) = inverse_[k] * b.template segment<3>(3 * k);
+  void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+    z.resize(r.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, inverse_.size(), 1024), [&](const auto& range) {
+      for (size_t b = range.begin(); b != range.end(); ++b)
+        z.segment<3>(3 * static_cast<Eigen::Index>(b)) = inverse_[b] * r.segment<3>(3 * static_cast<Eigen::Index>(b));
+    });
   }
-  template <typename Rhs>
-  inline const Eigen::Solve<BlockJacobi3, Rhs> solve(const Eigen::MatrixBase<Rhs>& b) const {
-    return Eigen::Solve<BlockJacobi3, Rhs>(*this, b.derived());
-  }
-  Eigen::ComputationInfo info() { return Eigen::Success; }
 
  private:
   std::vector<Mat3> inverse_;
 };
 
-template <class Precond>
 class PcgSolver final : public LinearSolver {
  public:
-  PcgSolver(std::string name, int max_iterations) : name_(std::move(name)) { cg_.setMaxIterations(max_iterations); }
-  std::string name() const override { return name_; }
+  PcgSolver(Preconditioner kind, int max_iterations) : kind_(kind), max_iterations_(max_iterations) {}
+  std::string name() const override {
+    return kind_ == Preconditioner::Jacobi ? "pcg-jacobi" : "pcg-block-jacobi";
+  }
+
+  // Standard PCG from x = 0 (Newton directions are solved afresh); stops when
+  // ||b - A x|| <= tolerance ||b||, as Eigen's CG does.
   LinearSolveReport solve(const LinearOperator& op, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                           double tolerance) override {
-    // Eigen's CG runs on the assembled matrix; a matrix-free operator needs a CG over
-    // LinearOperator::apply, which arrives with the matrix-free backend.
-    if (!op.matrix()) throw Error("this PCG needs an assembled matrix", "solver.linear");
-    const Eigen::SparseMatrix<double>& A = *op.matrix();
-    cg_.setTolerance(tolerance);
-    cg_.compute(A);
-    x = cg_.solve(b);  // zero initial guess: Newton directions are solved afresh
-    return {static_cast<int>(cg_.iterations()), cg_.error(), cg_.info() == Eigen::Success};
+    if (op.rows() % 3 != 0) throw Error("PCG expects 3 DOFs per vertex", "solver.linear");
+    const Eigen::Index n = op.rows();
+    x.setZero(n);
+    const double b_norm = b.norm();
+    if (b_norm == 0.0) return {0, 0.0, true};
+    const Preconditioning M(op, kind_);
+    Eigen::VectorXd r = b, z(n), p(n), Ap(n);
+    M.apply(r, z);
+    p = z;
+    double rz = r.dot(z);
+    const double threshold = tolerance * b_norm;
+    double r_norm = b_norm;
+    int k = 0;
+    while (k < max_iterations_ && r_norm > threshold) {
+      op.apply(p, Ap);
+      const double pAp = p.dot(Ap);
+      // The projected Hessian is positive semi-definite; a direction of zero or negative
+      // curvature (round-off on a singular system) ends the solve with the iterate so far.
+      if (!(pAp > 0.0)) break;
+      const double alpha = rz / pAp;
+      x.noalias() += alpha * p;
+      r.noalias() -= alpha * Ap;
+      r_norm = r.norm();
+      ++k;
+      if (r_norm <= threshold) break;
+      M.apply(r, z);
+      const double rz_next = r.dot(z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    return {k, r_norm / b_norm, r_norm <= threshold};
   }
 
  private:
-  std::string name_;
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Precond> cg_;
+  Preconditioner kind_;
+  int max_iterations_;
 };
 
 }  // namespace
@@ -88,11 +104,7 @@ std::unique_ptr<LinearSolver> make_cholmod_solver();
 
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSettings& s) {
   if (s.kind == "cholmod") return make_cholmod_solver();
-  if (s.kind == "pcg") {
-    if (s.preconditioner == Preconditioner::Jacobi)
-      return std::make_unique<PcgSolver<Eigen::DiagonalPreconditioner<double>>>("pcg-jacobi", s.max_iterations);
-    return std::make_unique<PcgSolver<BlockJacobi3>>("pcg-block-jacobi", s.max_iterations);
-  }
+  if (s.kind == "pcg") return std::make_unique<PcgSolver>(s.preconditioner, s.max_iterations);
   throw Error("unknown linear solver '" + s.kind + "' (expected cholmod or pcg)", "solver.linear");
 }
 

@@ -148,6 +148,7 @@ struct ScrambleConfig {
   // h = 1/4).
   double tolerance = 1e-6;
   int max_iterations = 1000;
+  Projection projection = Projection::Clamp;  // of the quadrature-point Hessians
   LinearSolverSettings linear = scramble_linear_solver();
   double linear_tolerance = 1e-3;
 

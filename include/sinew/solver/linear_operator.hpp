@@ -25,8 +25,10 @@ class SparseOperator final : public LinearOperator {
  public:
   explicit SparseOperator(const Eigen::SparseMatrix<double>& A) : A_(&A) {}
   Eigen::Index rows() const override { return A_->rows(); }
-  void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override { y = (*A_) * x; }
-  Mat3 diagonal_block(Eigen::Index v) const override { return Mat3(A_->block(3 * v, 3 * v, 3, 3)); }
+  // Parallel over columns (oneTBB): for a symmetric matrix, column c dotted with x is row c of
+  // A x, so each output entry is written by one task, with a fixed summation order.
+  void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override;
+  Mat3 diagonal_block(Eigen::Index v) const override;
   const Eigen::SparseMatrix<double>* matrix() const override { return A_; }
 
  private:
