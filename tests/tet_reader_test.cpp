@@ -131,7 +131,7 @@ TEST(TetMeshReader, TetGenNodeEleBothBases) {
   dir.write("bad.ele", "1 4 0\n0 0 1 2 4\n");
   expect_contains(error_message([&] { read_volume_mesh(dir / "bad.ele"); }), {"bad.ele:2", "point 4"});
   dir.write("cut.node", "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n");
-  expect_contains(error_message([&] { read_volume_mesh(dir / "cut.node"); }), {"cut.node:4", "end of file"});
+  expect_contains(error_message([&] { read_volume_mesh(dir / "cut.node"); }), {"cut.node:5", "end of file"});
   dir.write("nan.node", "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 NaN 0\n3 0 0 1\n");
   dir.write("nan.ele", "1 4 0\n0 0 1 2 3\n");
   expect_contains(error_message([&] { read_volume_mesh(dir / "nan.ele"); }), {"nan.node:4"});

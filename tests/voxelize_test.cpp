@@ -137,7 +137,7 @@ TEST(Voxelize, NonManifoldCubesDoNotDragEachOther) {
     const std::string scene = fmt::format(R"({{
       "mesh": {{"surface": "{}", {}, "non_manifold": {}}},
       "material": {{"family": "stable_neo_hookean", "E": 1e6, "nu": 0.3}},
-      "density": 1000, "gravity": [0, 0, -9.81],
+      "density": 1000, "loads": {{"gravity": [0, 0, -9.81]}},
       "boundary": [{{"name": "a", "select": {{"plane": {{"point": [0, 0, 0], "normal": [-1, 0, 0]}}}}}}{}],
       "solver": {{"newton": {{"tolerance": 1e-9}}}},
       "output": {{"obj": false}}

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <mutex>
-#include <numbers>
 #include <unordered_map>
 #include <vector>
 
@@ -62,15 +61,9 @@ VolumeMesh tetrahedralize_surface(const TriangleSurface& surface, double max_edg
     for (Eigen::Index f = 0; f < surface.num_faces(); ++f)
       for (int k = 0; k < 3; ++k) triangles.push_back(static_cast<std::size_t>(surface.faces(f, k) + 1));
     gmsh::model::mesh::addElementsByType(s, kGmshTriangle, {}, triangles);
-    // Split the discrete surface into patches and give it a topology, then close it into a
-    // volume; without reparametrisation the input triangles stay as they are.
-    gmsh::model::mesh::classifySurfaces(40.0 * std::numbers::pi / 180.0, true, false, std::numbers::pi);
-    gmsh::model::mesh::createGeometry();
-    gmsh::vectorpair patches;
-    gmsh::model::getEntities(patches, 2);
-    std::vector<int> patch_tags;
-    for (const auto& [dim, tag] : patches) patch_tags.push_back(tag);
-    const int loop = gmsh::model::geo::addSurfaceLoop(patch_tags);
+    // The discrete surface closes the volume as it is: no reparametrisation (which fails for
+    // surfaces without boundary curves, such as a sphere), so the input triangles stay.
+    const int loop = gmsh::model::geo::addSurfaceLoop({s});
     gmsh::model::geo::addVolume({loop});
     gmsh::model::geo::synchronize();
     gmsh::option::setNumber("Mesh.MeshSizeMax", max_edge);
@@ -103,6 +96,8 @@ VolumeMesh tetrahedralize_surface(const TriangleSurface& surface, double max_edg
     }
   } catch (const Error&) {
     throw;
+  } catch (const std::string& message) {  // how the Gmsh API reports its errors
+    throw Error(fmt::format("Gmsh failed: {}", message), where);
   } catch (const std::exception& e) {
     throw Error(fmt::format("Gmsh failed: {}", e.what()), where);
   } catch (...) {
