@@ -77,6 +77,25 @@ TEST(SurfaceReader, BinaryStlAndQuadsAndNegativeObjIndices) {
   expect_contains(error_message([&] { read_triangle_surface(dir.write("cut.stl", bytes.substr(0, bytes.size() - 20))); }),
                   {"cut.stl", "truncated", "triangle 3"});
 
+  // Binary little-endian PLY of the same tetrahedron (float coordinates, uchar/int face lists).
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const auto& p : P)
+    for (double c : p) {
+      const float x = static_cast<float>(c);
+      ply.append(reinterpret_cast<const char*>(&x), 4);
+    }
+  for (const auto& f : F) {
+    ply.push_back('\3');
+    for (int c : f) ply.append(reinterpret_cast<const char*>(&c), 4);
+  }
+  const TriangleSurface from_ply = read_triangle_surface(dir.write("tet.ply", ply));
+  EXPECT_EQ(from_ply.num_faces(), 4);
+  EXPECT_NEAR(from_ply.volume(), 1.0 / 6.0, 1e-7);
+  expect_contains(error_message([&] { read_triangle_surface(dir.write("cut.ply", ply.substr(0, ply.size() - 9))); }),
+                  {"cut.ply"});
+
   // A cube of quads, with relative (negative) indices and texture/normal slots.
   const TriangleSurface cube = read_triangle_surface(dir.write("cube.obj",
       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n"

@@ -81,8 +81,8 @@ class ElementGrid {
       mean_size += boxes_[e].sizes().maxCoeff();
     }
     mean_size /= static_cast<double>(mesh.num_elements());
-    // About one element per grid cell, at most ~4 million cells.
-    h_ = std::max(mean_size, bounds_.sizes().maxCoeff() / 160.0);
+    // About one element per grid cell, at most 64 cells along the longest side (262,144 lists).
+    h_ = std::max(mean_size, bounds_.sizes().maxCoeff() / 64.0);
     dims_ = ((bounds_.sizes() / h_).array().floor().cast<int>() + 1).matrix();
     cells_.resize(static_cast<size_t>(dims_.prod()));
     for (Eigen::Index e = 0; e < mesh.num_elements(); ++e) {
