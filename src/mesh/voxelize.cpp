@@ -57,53 +57,52 @@ VolumeMesh voxelize_surface(const InsideTest& shape, const VoxelizeOptions& opti
         kept[cell_id(i, j, k)] = keep;
       }
 
-  // Vertex copies. Grid vertex g has up to 8 cells around it (offsets d in {0,1}^3 give cell
-  // g - 1 + d); without the non-manifold option all of them share one copy, with it each
-  // face-connected group (cells whose offsets differ in one bit share a face) gets its own.
+  // Vertex copies. Grid vertex (i, j, k) has up to 8 cells around it (offset d in {0,1}^3 is
+  // the cell (i - 1, j - 1, k - 1) + d); without the non-manifold option all of them share one
+  // copy, with it each face-connected group (offsets differing in one bit share a face) gets
+  // its own. Groups are recomputed when the elements are built, so only the first copy's index
+  // is stored per grid vertex (4 bytes, not 8 per cell around it).
   const Eigen::Vector3i nv = cells.array() + 1;
   auto vertex_id = [&](int i, int j, int k) { return (static_cast<Eigen::Index>(k) * nv(1) + j) * nv(0) + i; };
-  // copy_of[g * 8 + d]: the mesh vertex of grid vertex g as seen from the cell at offset d.
-  std::vector<int> copy_of(static_cast<size_t>(nv.prod()) * 8, -1);
+  // group[d] for the kept cells around the vertex (-1: no kept cell there); returns the count.
+  auto groups_at = [&](int i, int j, int k, std::array<int, 8>& group) {
+    std::array<bool, 8> present{};
+    for (int d = 0; d < 8; ++d) {
+      const int ci = i - 1 + (d & 1), cj = j - 1 + ((d >> 1) & 1), ck = k - 1 + ((d >> 2) & 1);
+      present[d] = ci >= 0 && cj >= 0 && ck >= 0 && ci < cells(0) && cj < cells(1) && ck < cells(2) &&
+                   kept[cell_id(ci, cj, ck)];
+    }
+    group.fill(-1);
+    int groups = 0;
+    for (int d = 0; d < 8; ++d) {
+      if (!present[d] || group[d] >= 0) continue;
+      std::array<int, 8> stack{};  // flood fill; each cell is pushed once
+      int top = 0;
+      stack[top++] = d;
+      group[d] = groups;
+      while (top > 0) {
+        const int c = stack[--top];
+        for (int e = 0; e < 8; ++e) {
+          if (!present[e] || group[e] >= 0) continue;
+          const int diff = c ^ e;
+          const bool face_neighbour = diff == 1 || diff == 2 || diff == 4;
+          if (!options.non_manifold || face_neighbour) group[e] = groups, stack[top++] = e;
+        }
+      }
+      ++groups;
+    }
+    return groups;
+  };
+  std::vector<int> first_copy(static_cast<size_t>(nv.prod()), -1);
   std::vector<Eigen::Vector3d> positions;
+  std::array<int, 8> group;
   for (int k = 0; k < nv(2); ++k)
     for (int j = 0; j < nv(1); ++j)
       for (int i = 0; i < nv(0); ++i) {
-        std::array<bool, 8> present{};
-        bool any = false;
-        for (int d = 0; d < 8; ++d) {
-          const int ci = i - 1 + (d & 1), cj = j - 1 + ((d >> 1) & 1), ck = k - 1 + ((d >> 2) & 1);
-          present[d] = ci >= 0 && cj >= 0 && ck >= 0 && ci < cells(0) && cj < cells(1) && ck < cells(2) &&
-                       kept[cell_id(ci, cj, ck)];
-          any = any || present[d];
-        }
-        if (!any) continue;
-        const Eigen::Index g = vertex_id(i, j, k);
-        const Eigen::Vector3d x = origin + h * Eigen::Vector3d(i, j, k);
-        std::array<int, 8> group;
-        group.fill(-1);
-        int groups = 0;
-        for (int d = 0; d < 8; ++d) {
-          if (!present[d] || group[d] >= 0) continue;
-          // Flood fill over face neighbours (offsets one bit apart); without the option, one group.
-          std::array<int, 8> stack{};
-          int top = 0;
-          stack[top++] = d;
-          group[d] = groups;
-          while (top > 0) {
-            const int c = stack[--top];
-            for (int e = 0; e < 8; ++e) {
-              if (!present[e] || group[e] >= 0) continue;
-              const int diff = c ^ e;
-              const bool face_neighbour = diff == 1 || diff == 2 || diff == 4;
-              if (!options.non_manifold || face_neighbour) group[e] = groups, stack[top++] = e;
-            }
-          }
-          ++groups;
-        }
-        const int first = static_cast<int>(positions.size());
-        for (int n = 0; n < groups; ++n) positions.push_back(x);
-        for (int d = 0; d < 8; ++d)
-          if (present[d]) copy_of[static_cast<size_t>(g) * 8 + d] = first + group[d];
+        const int groups = groups_at(i, j, k, group);
+        if (groups == 0) continue;
+        first_copy[vertex_id(i, j, k)] = static_cast<int>(positions.size());
+        for (int n = 0; n < groups; ++n) positions.push_back(origin + h * Eigen::Vector3d(i, j, k));
       }
 
   std::vector<std::array<int, 8>> elements;
@@ -114,9 +113,10 @@ VolumeMesh voxelize_surface(const InsideTest& shape, const VoxelizeOptions& opti
         std::array<int, 8> e;
         for (int a = 0; a < 8; ++a) {
           const auto& c = kCorner[a];
+          groups_at(i + c[0], j + c[1], k + c[2], group);
           // Seen from the vertex, this cell sits at offset 1 - c along each axis.
           const int d = (1 - c[0]) | ((1 - c[1]) << 1) | ((1 - c[2]) << 2);
-          e[a] = copy_of[static_cast<size_t>(vertex_id(i + c[0], j + c[1], k + c[2])) * 8 + d];
+          e[a] = first_copy[vertex_id(i + c[0], j + c[1], k + c[2])] + group[d];
         }
         elements.push_back(e);
       }
