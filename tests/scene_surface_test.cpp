@@ -5,7 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "io_test_support.hpp"
+#include "sinew/io/surface_reader.hpp"
 #include "sinew/scene/scene.hpp"
+#include "sinew/scene/simulation.hpp"
 
 namespace sinew {
 namespace {
@@ -47,6 +49,26 @@ TEST(SceneSurface, VoxelisedAndTetrahedralisedSurfaces) {
   EXPECT_EQ(build_scene_mesh(g).kind, ElementKind::Tet4);
 }
 
+TEST(SceneSurface, AnyMeshCanEmbedASurfaceFile) {
+  test::TempDir dir;
+  // The example sphere (radius 0.5 at the origin) inside a box lattice, written every frame.
+  const std::string scene = R"({
+    "mesh": {"box": {"min": [-0.6, -0.6, -0.6], "max": [0.6, 0.6, 0.6]}, "cells": [3, 3, 3], "embed": ")" +
+                            (meshes() / "sphere.stl").string() + R"("},
+    "material": {"family": "stable_neo_hookean", "E": 1e5, "nu": 0.3},
+    "boundary": [{"name": "base", "select": {"plane": {"point": [0, 0, -0.6], "normal": [0, 0, -1]}}},
+                 {"name": "top", "select": {"plane": {"point": [0, 0, 0.6], "normal": [0, 0, 1]}},
+                  "motion": {"type": "translate", "per_frame": [0.05, 0, 0]}}]
+  })";
+  RunOptions options;
+  options.out_dir = dir / "out";
+  ASSERT_TRUE(run_scene(load_scene(dir.write("box.json", scene)), options).all_converged());
+  const TriangleSurface sphere = read_triangle_surface(meshes() / "sphere.stl");
+  const TriangleSurface moved = read_triangle_surface(dir / "out" / "embedded_surface_0001.ply");
+  EXPECT_EQ(moved.faces, sphere.faces);
+  EXPECT_GT((moved.vertices - sphere.vertices).cwiseAbs().maxCoeff(), 0.01);
+}
+
 TEST(SceneSurface, MisplacedOrMissingKeysAreNamed) {
   expect_contains(failure({{"surface", "torus.obj"}}), {"/mesh", "exactly one of cell_size or resolution"});
   expect_contains(failure({{"surface", "torus.obj"}, {"resolution", 4}, {"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}}),
@@ -56,7 +78,11 @@ TEST(SceneSurface, MisplacedOrMissingKeysAreNamed) {
   expect_contains(failure({{"tetrahedralize", "blob.off"}}), {"/mesh/max_edge"});
   expect_contains(failure({{"surface", "torus.obj"}, {"resolution", 4}, {"max_edge", 0.1}}), {"/mesh/max_edge"});
   expect_contains(failure({{"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}, {"cells", {1, 1, 1}}, {"embed", true}}),
-                  {"/mesh/embed"});
+                  {"/mesh/embed", "name a surface file"});
+  expect_contains(failure({{"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}, {"cells", {1, 1, 1}}, {"embed", 3}}),
+                  {"/mesh/embed", "true, false or a surface file"});
+  expect_contains(failure({{"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}, {"cells", {1, 1, 1}}, {"embed", "nope.obj"}}),
+                  {"/mesh/embed", "surface file not found"});
   expect_contains(failure({{"tetrahedralize", "two_cubes_edge.obj"}, {"max_edge", 0.5}}), {"/mesh", "2-manifold"});
 }
 

@@ -100,6 +100,7 @@ MeshSpec parse_mesh(JsonObject o, const std::filesystem::path& folder) {
            "tetrahedralize", "max_edge", "non_manifold", "embed", "reorient"});
   MeshSpec spec;
   if (parse_surface_mesh(o, folder, spec)) return spec;  // scene_surface.cpp
+  spec.embed = parse_embedded_surface(o, folder, std::nullopt);
   const int kinds = int(o.has("box")) + int(o.has("cylinder")) + int(o.has("sphere")) + int(o.has("voxels")) +
                     int(o.has("file"));
   if (kinds != 1) o.fail("", "give exactly one of box, cylinder, sphere, voxels or file");

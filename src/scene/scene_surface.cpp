@@ -28,6 +28,16 @@ std::filesystem::path existing_file(JsonObject& o, const std::string& key, const
 
 }  // namespace
 
+std::optional<std::filesystem::path> parse_embedded_surface(JsonObject& o, const std::filesystem::path& folder,
+                                                            const std::optional<std::filesystem::path>& own_surface) {
+  if (!o.has("embed")) return std::nullopt;
+  if (o.raw("embed").is_string()) return existing_file(o, "embed", folder);
+  if (!o.raw("embed").is_boolean()) o.fail("embed", "must be true, false or a surface file");
+  if (!o.boolean("embed", false)) return std::nullopt;
+  if (!own_surface) o.fail("embed", "true embeds the input surface of surface or tetrahedralize; name a surface file to embed in this mesh");
+  return own_surface;
+}
+
 bool parse_surface_mesh(JsonObject& o, const std::filesystem::path& folder, MeshSpec& spec) {
   const bool voxels = o.has("surface"), tets = o.has("tetrahedralize");
   if (!voxels && !tets) return false;
@@ -48,8 +58,8 @@ bool parse_surface_mesh(JsonObject& o, const std::filesystem::path& folder, Mesh
     spec.source = SurfaceTetrahedra{path, o.positive("max_edge")};
     spec.element = ElementKind::Tet4;
   }
-  if (o.boolean("embed", false)) spec.embed = voxels ? std::get<SurfaceVoxels>(spec.source).path
-                                                     : std::get<SurfaceTetrahedra>(spec.source).path;
+  spec.embed = parse_embedded_surface(o, folder, voxels ? std::get<SurfaceVoxels>(spec.source).path
+                                                          : std::get<SurfaceTetrahedra>(spec.source).path);
   o.finish();
   return true;
 }
