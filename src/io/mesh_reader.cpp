@@ -5,10 +5,11 @@
 #include <fmt/format.h>
 
 #include "sinew/core/error.hpp"
+#include "sinew/mesh/reorient.hpp"
 
 namespace sinew {
 
-VolumeMesh read_volume_mesh(const std::filesystem::path& path) {
+VolumeMesh read_volume_mesh(const std::filesystem::path& path, const MeshReadOptions& options) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -19,14 +20,20 @@ VolumeMesh read_volume_mesh(const std::filesystem::path& path) {
     mesh = read_vtk_legacy_mesh(path);
   } else if (ext == ".vtu") {
     mesh = read_vtu_mesh(path);
+  } else if (ext == ".msh") {
+    mesh = read_gmsh_mesh(path);
+  } else if (ext == ".node" || ext == ".ele") {
+    mesh = read_tetgen_mesh(path);
   } else if (ext == ".meshb") {
     throw Error("binary MEDIT (.meshb) is not supported; convert it to ASCII .mesh", path.string());
   } else {
     throw Error(fmt::format("unknown mesh file extension '{}'; supported: .mesh (MEDIT ASCII), "
-                            ".vtk (legacy VTK ASCII), .vtu (VTK XML UnstructuredGrid)",
+                            ".vtk (legacy VTK ASCII), .vtu (VTK XML UnstructuredGrid), .msh (Gmsh ASCII 2.2/4.1), "
+                            ".node/.ele (TetGen)",
                             ext),
                 path.string());
   }
+  if (options.reorient_inverted) reorient_inverted_elements(mesh);
   mesh.validate(path.string());
   return mesh;
 }

@@ -12,6 +12,7 @@
 #include "sinew/io/mesh_reader.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/scene/json_reader.hpp"
+#include "sinew/scene/scene_surface.hpp"
 
 namespace sinew {
 namespace {
@@ -95,8 +96,11 @@ RigidMotion parse_motion(JsonObject o) {
 }
 
 MeshSpec parse_mesh(JsonObject o, const std::filesystem::path& folder) {
-  o.allow({"box", "cylinder", "sphere", "voxels", "file", "cells", "cell_size", "resolution", "element"});
+  o.allow({"box", "cylinder", "sphere", "voxels", "file", "cells", "cell_size", "resolution", "element", "surface",
+           "tetrahedralize", "max_edge", "non_manifold", "embed", "reorient"});
   MeshSpec spec;
+  if (parse_surface_mesh(o, folder, spec)) return spec;  // scene_surface.cpp
+  spec.embed = parse_embedded_surface(o, folder, std::nullopt);
   const int kinds = int(o.has("box")) + int(o.has("cylinder")) + int(o.has("sphere")) + int(o.has("voxels")) +
                     int(o.has("file"));
   if (kinds != 1) o.fail("", "give exactly one of box, cylinder, sphere, voxels or file");
@@ -108,7 +112,7 @@ MeshSpec parse_mesh(JsonObject o, const std::filesystem::path& folder) {
     if (!std::filesystem::is_regular_file(resolved, ec))
       o.fail("file", fmt::format("mesh file not found: {}{}", resolved.string(),
                                  p.is_absolute() ? "" : " (relative paths start at the scene file's folder)"));
-    spec.source = MeshFile{resolved};
+    spec.source = MeshFile{resolved, o.boolean("reorient", false)};
     for (const char* key : {"cells", "cell_size", "resolution"})
       if (o.has(key)) o.fail(key, "a mesh file has its own resolution");
     if (o.has("element")) o.fail("element", "a mesh file's element kind comes from the file");
@@ -390,13 +394,17 @@ VolumeMesh build_scene_mesh(const Scene& scene) {
   const MeshSpec& spec = scene.mesh;
   if (const auto* f = std::get_if<MeshFile>(&spec.source)) {
     try {
-      return read_volume_mesh(f->path);  // validated by the reader
+      return read_volume_mesh(f->path, {f->reorient});  // validated by the reader
     } catch (const Error& e) {
       throw e.within(where + "/file");
     }
   }
   VolumeMesh mesh;
   try {
+    if (auto surface_mesh = build_surface_mesh(spec)) {  // scene_surface.cpp
+      surface_mesh->validate(where);
+      return *surface_mesh;
+    }
     mesh = shape_lattice(spec, where);
     if (spec.element == ElementKind::Tet4) mesh = tetrahedralize_hexes(mesh);
   } catch (const Error& e) {

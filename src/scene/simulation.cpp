@@ -14,6 +14,7 @@
 #include "sinew/io/atomic_file.hpp"
 #include "sinew/io/obj_writer.hpp"
 #include "sinew/io/vtk_writer.hpp"
+#include "sinew/scene/scene_surface.hpp"
 #include "sinew/mesh/surface.hpp"
 #include "sinew/solver/newton.hpp"
 
@@ -148,7 +149,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& out, const std::string& 
 // A fresh run replaces the files an earlier run left in the folder (only the names Sinew
 // writes), so a shorter run does not leave stale frames behind.
 void remove_previous_outputs(const std::filesystem::path& out) {
-  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|simulation\.pvd|summary\.json|checkpoint\.json))");
+  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|simulation\.pvd|summary\.json|checkpoint\.json))");
   std::error_code ec;
   if (!std::filesystem::is_directory(out, ec)) return;
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
@@ -239,6 +240,7 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   const VolumeMesh& mesh = disc.mesh();
   Problem& problem = *model.problem;
   auto linear = make_linear_solver(scene.solver.linear);
+  const EmbeddedSurfaceOutput embedded(scene, mesh);  // scene_surface.hpp
 
   RunSummary summary;
   summary.vertices = mesh.num_vertices();
@@ -278,6 +280,7 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
       write_pvd(out / "simulation.pvd", pvd_entries);
     }
     if (scene.output.obj) write_surface_obj(out / fmt::format("surface_{:04d}.obj", frame), mesh, model.surface, x);
+    embedded.write(out, frame, x);
   };
 
   auto frames_json = [&] {

@@ -10,18 +10,27 @@
 //   .vtu   VTK XML UnstructuredGrid, one Piece, inline DataArrays in ascii or base64 binary
 //          (UInt32 or UInt64 headers, either byte order); appended or compressed data is
 //          rejected as unsupported.
-// A mesh is all hexahedra or all tetrahedra. See docs/file-formats.md.
+//   .msh   Gmsh ASCII, versions 2.2 and 4.1; tetrahedra (type 4) or hexahedra (type 5), other
+//          element types (the boundary's triangles, lines, points) skipped.
+//   .node/.ele  TetGen: either name reads both files (same stem), 0- or 1-based.
+// A mesh is all hexahedra or all tetrahedra. Inverted elements are rejected with their index
+// unless `reorient_inverted` renumbers them (sinew/mesh/reorient.hpp). See docs/file-formats.md.
 #include <filesystem>
 
 #include "sinew/mesh/volume_mesh.hpp"
 
 namespace sinew {
 
-VolumeMesh read_volume_mesh(const std::filesystem::path& path);
+struct MeshReadOptions {
+  bool reorient_inverted = false;
+};
+VolumeMesh read_volume_mesh(const std::filesystem::path& path, const MeshReadOptions& options = {});
 
 // The individual readers (no validation beyond index ranges and cell kinds).
 VolumeMesh read_medit_mesh(const std::filesystem::path& path);
 VolumeMesh read_vtk_legacy_mesh(const std::filesystem::path& path);
 VolumeMesh read_vtu_mesh(const std::filesystem::path& path);
+VolumeMesh read_gmsh_mesh(const std::filesystem::path& path);
+VolumeMesh read_tetgen_mesh(const std::filesystem::path& path);  // path: the .node or the .ele
 
 }  // namespace sinew

@@ -13,6 +13,7 @@
 #include "sinew/material/spec.hpp"
 #include "sinew/mesh/selection.hpp"
 #include "sinew/mesh/volume_mesh.hpp"
+#include "sinew/scene/surface_sources.hpp"
 #include "sinew/solver/linear_solver.hpp"
 #include "sinew/solver/newton.hpp"
 
@@ -38,16 +39,19 @@ struct VoxelShape {
 };
 struct MeshFile {
   std::filesystem::path path;  // resolved against the scene's folder
+  bool reorient = false;       // renumber inverted elements instead of rejecting them
 };
 
 struct MeshSpec {
-  std::variant<BoxShape, CylinderShape, SphereShape, VoxelShape, MeshFile> source;
+  std::variant<BoxShape, CylinderShape, SphereShape, VoxelShape, MeshFile, SurfaceVoxels, SurfaceTetrahedra> source;
   // Lattice resolution: explicit cell counts (box), or a cell size, or the number of cells
   // along the longest side of the shape's bounding box.
   std::optional<Eigen::Vector3i> cells;
   std::optional<double> cell_size;
   std::optional<int> resolution;
   ElementKind element = ElementKind::Hex8;  // lattices only: "tet" splits each hex into six
+  // A closed surface bound to the mesh and written deformed every frame (scene_surface.hpp).
+  std::optional<std::filesystem::path> embed;
 };
 
 struct BoundarySpec {

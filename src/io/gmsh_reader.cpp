@@ -1,0 +1,191 @@
+// Gmsh .msh, ASCII versions 2.2 and 4.1 (the two Gmsh writes; 4.1 is its default). Nodes
+// carry arbitrary tags, mapped here to 0-based indices; tetrahedra (type 4) and hexahedra
+// (type 5) are kept, every other element type (points, lines, triangles, quads of the
+// boundary) is skipped. Gmsh's node orders for these two types are VTK's. Binary files are
+// rejected with a hint; sections Sinew does not use ($PhysicalNames, $Entities, ...) are
+// skipped up to their $End line.
+#include <charconv>
+#include <fmt/format.h>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "sinew/core/error.hpp"
+#include "sinew/io/mesh_reader.hpp"
+#include "sinew/io/text_scanner.hpp"
+
+namespace sinew {
+namespace {
+
+constexpr int kGmshTet4 = 4, kGmshHex8 = 5;
+
+struct MshBuilder {
+  std::vector<Eigen::Vector3d> points;
+  std::unordered_map<std::int64_t, int> index_of_tag;
+  std::vector<std::vector<int>> cells;
+  int kind = 0;  // kGmshTet4 or kGmshHex8 once an element was kept
+
+  void add_node(TextScanner& in, std::int64_t tag, const Eigen::Vector3d& x) {
+    if (!index_of_tag.emplace(tag, static_cast<int>(points.size())).second) in.fail(fmt::format("node tag {} appears twice", tag));
+    points.push_back(x);
+  }
+  // `nodes`: the element's node tags, from the rest of its line.
+  void add_element(TextScanner& in, std::int64_t tag, int type, std::string_view rest, std::size_t skip_tags) {
+    if (type != kGmshTet4 && type != kGmshHex8) return;
+    if (kind != 0 && kind != type) in.fail(fmt::format("element {} mixes hexahedra and tetrahedra (Sinew needs one kind)", tag));
+    kind = type;
+    // The rest of the element's line: its tags (v2), then its nodes.
+    std::vector<std::int64_t> numbers;
+    for (std::size_t i = 0; i < rest.size();) {
+      while (i < rest.size() && (rest[i] == ' ' || rest[i] == '\t' || rest[i] == '\r')) ++i;
+      const std::size_t start = i;
+      while (i < rest.size() && rest[i] != ' ' && rest[i] != '\t' && rest[i] != '\r') ++i;
+      if (i == start) break;
+      std::int64_t v = 0;
+      const auto [end, ec] = std::from_chars(rest.data() + start, rest.data() + i, v);
+      if (ec != std::errc() || end != rest.data() + i)
+        in.fail(fmt::format("element {}: expected an integer, got '{}'", tag, rest.substr(start, i - start)));
+      numbers.push_back(v);
+    }
+    const std::size_t n = type == kGmshTet4 ? 4 : 8;
+    if (numbers.size() != skip_tags + n)
+      in.fail(fmt::format("element {} needs {} tags and {} nodes, the line has {} numbers", tag, skip_tags, n, numbers.size()));
+    std::vector<int> cell;
+    for (std::size_t a = 0; a < n; ++a) {
+      const std::int64_t node = numbers[skip_tags + a];
+      const auto it = index_of_tag.find(node);
+      if (it == index_of_tag.end()) in.fail(fmt::format("element {} refers to node {}, which is not defined", tag, node));
+      cell.push_back(it->second);
+    }
+    cells.push_back(std::move(cell));
+  }
+  VolumeMesh finish(TextScanner& in) const {
+    if (cells.empty()) in.fail("the file has no tetrahedra (type 4) or hexahedra (type 5)");
+    VolumeMesh mesh;
+    mesh.kind = kind == kGmshTet4 ? ElementKind::Tet4 : ElementKind::Hex8;
+    mesh.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
+    for (std::size_t v = 0; v < points.size(); ++v) mesh.vertices.row(static_cast<Eigen::Index>(v)) = points[v].transpose();
+    mesh.elements.resize(static_cast<Eigen::Index>(cells.size()), static_cast<Eigen::Index>(cells[0].size()));
+    for (std::size_t e = 0; e < cells.size(); ++e)
+      for (std::size_t a = 0; a < cells[e].size(); ++a)
+        mesh.elements(static_cast<Eigen::Index>(e), static_cast<Eigen::Index>(a)) = cells[e][a];
+    return mesh;
+  }
+};
+
+Eigen::Vector3d read_point(TextScanner& in) {
+  Eigen::Vector3d x;
+  for (int i = 0; i < 3; ++i) x(i) = in.next_double("a node coordinate");
+  return x;
+}
+
+std::int64_t read_count(TextScanner& in, std::string_view what) {
+  const std::int64_t n = in.next_integer(what);
+  if (n < 0 || n > (std::int64_t{1} << 31)) in.fail(fmt::format("{} {} is out of range", what, n));
+  return n;
+}
+
+void expect(TextScanner& in, std::string_view token) {
+  const std::string_view got = in.next(token);
+  if (got != token) in.fail(fmt::format("expected '{}', got '{}'", token, got));
+}
+
+void read_nodes_v2(TextScanner& in, MshBuilder& b) {
+  const std::int64_t n = read_count(in, "the node count");
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::int64_t tag = in.next_integer("a node tag");
+    b.add_node(in, tag, read_point(in));
+  }
+  expect(in, "$EndNodes");
+}
+
+void read_elements_v2(TextScanner& in, MshBuilder& b) {
+  const std::int64_t n = read_count(in, "the element count");
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::int64_t tag = in.next_integer("an element tag");
+    const std::int64_t type = in.next_integer("an element type");
+    const std::int64_t tags = read_count(in, "the number of element tags");
+    b.add_element(in, tag, static_cast<int>(type), in.next_line("an element's nodes"), static_cast<std::size_t>(tags));
+  }
+  expect(in, "$EndElements");
+}
+
+void read_nodes_v4(TextScanner& in, MshBuilder& b) {
+  const std::int64_t blocks = read_count(in, "the node block count");
+  read_count(in, "the node count");
+  in.next_integer("the minimum node tag");
+  in.next_integer("the maximum node tag");
+  for (std::int64_t k = 0; k < blocks; ++k) {
+    in.next_integer("a block's entity dimension");
+    in.next_integer("a block's entity tag");
+    const bool parametric = in.next_integer("a block's parametric flag") != 0;
+    if (parametric) in.fail("parametric node coordinates are not supported");
+    const std::int64_t n = read_count(in, "a block's node count");
+    std::vector<std::int64_t> tags(static_cast<size_t>(n));
+    for (auto& t : tags) t = in.next_integer("a node tag");
+    for (const std::int64_t t : tags) b.add_node(in, t, read_point(in));
+  }
+  expect(in, "$EndNodes");
+}
+
+void read_elements_v4(TextScanner& in, MshBuilder& b) {
+  const std::int64_t blocks = read_count(in, "the element block count");
+  read_count(in, "the element count");
+  in.next_integer("the minimum element tag");
+  in.next_integer("the maximum element tag");
+  for (std::int64_t k = 0; k < blocks; ++k) {
+    in.next_integer("a block's entity dimension");
+    in.next_integer("a block's entity tag");
+    const std::int64_t type = in.next_integer("a block's element type");
+    const std::int64_t n = read_count(in, "a block's element count");
+    for (std::int64_t i = 0; i < n; ++i) {
+      const std::int64_t tag = in.next_integer("an element tag");
+      b.add_element(in, tag, static_cast<int>(type), in.next_line("an element's nodes"), 0);
+    }
+  }
+  expect(in, "$EndElements");
+}
+
+}  // namespace
+
+VolumeMesh read_gmsh_mesh(const std::filesystem::path& path) {
+  const std::string text = read_text_file(path);
+  TextScanner in(text, path.string());
+  expect(in, "$MeshFormat");
+  const std::string version(in.next("the format version"));
+  const std::int64_t file_type = in.next_integer("the file type");
+  in.next_integer("the data size");
+  if (file_type != 0) in.fail("binary .msh is not supported; save the mesh as ASCII (Gmsh option Mesh.Binary = 0)");
+  int major = 0;
+  if (version == "2.2" || version == "2.1" || version == "2") {
+    major = 2;
+  } else if (version == "4.1") {
+    major = 4;
+  } else {
+    in.fail(fmt::format("unsupported .msh version {} (supported: 2.2 and 4.1 ASCII)", version));
+  }
+  expect(in, "$EndMeshFormat");
+  MshBuilder b;
+  bool nodes = false, elements = false;
+  while (!in.at_end()) {
+    const std::string section(in.next("a section"));
+    if (section == "$Nodes") {
+      major == 2 ? read_nodes_v2(in, b) : read_nodes_v4(in, b);
+      nodes = true;
+    } else if (section == "$Elements") {
+      if (!nodes) in.fail("$Elements before $Nodes");
+      major == 2 ? read_elements_v2(in, b) : read_elements_v4(in, b);
+      elements = true;
+    } else if (section.size() > 1 && section[0] == '$') {
+      const std::string end = "$End" + section.substr(1);
+      while (in.next(end) != end) {
+      }
+    } else {
+      in.fail(fmt::format("expected a section such as $Nodes, got '{}'", section));
+    }
+  }
+  if (!nodes || !elements) in.fail(fmt::format("the file has no {} section", nodes ? "$Elements" : "$Nodes"));
+  return b.finish(in);
+}
+
+}  // namespace sinew

@@ -1,0 +1,303 @@
+#include "sinew/io/surface_reader.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/OBJ.h>
+#include <CGAL/IO/OFF.h>
+#include <CGAL/IO/PLY.h>
+#include <CGAL/IO/STL.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fmt/format.h>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sinew/core/error.hpp"
+#include "sinew/io/text_scanner.hpp"
+
+namespace sinew {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// ---- line-level checks of ASCII files (CGAL's readers say only "failed") ----
+
+std::vector<std::string_view> split(std::string_view line) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > start) out.push_back(line.substr(start, i - start));
+  }
+  return out;
+}
+
+std::optional<double> finite_number(std::string_view token) {
+  std::string s(token);
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (end != s.c_str() + s.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::optional<long long> integer(std::string_view token) {
+  long long v = 0;
+  const char* first = token.data();
+  if (!token.empty() && token.front() == '+') ++first;
+  const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), v);
+  if (ec != std::errc() || ptr != token.data() + token.size()) return std::nullopt;
+  return v;
+}
+
+// Lines of a text with 1-based numbers; comments after `comment` are dropped.
+class Lines {
+ public:
+  Lines(std::string_view text, std::string source, char comment) : text_(text), source_(std::move(source)), comment_(comment) {}
+  // The next line that has a token (false at the end).
+  bool next(std::vector<std::string_view>& tokens) {
+    while (pos_ < text_.size()) {
+      std::size_t end = text_.find('\n', pos_);
+      if (end == std::string_view::npos) end = text_.size();
+      std::string_view line = text_.substr(pos_, end - pos_);
+      pos_ = end + 1;
+      ++line_;
+      if (comment_) line = line.substr(0, line.find(comment_));
+      tokens = split(line);
+      if (!tokens.empty()) return true;
+    }
+    return false;
+  }
+  int line() const { return line_; }
+  [[noreturn]] void fail(const std::string& message) const {
+    throw Error(message, fmt::format("{}:{}", source_, line_));
+  }
+  [[noreturn]] void fail_at_end(const std::string& message) const {
+    throw Error(fmt::format("file ends early: {}", message), fmt::format("{}:{}", source_, line_));
+  }
+  double number(std::string_view token, std::string_view what) const {
+    const auto v = finite_number(token);
+    if (!v) fail(fmt::format("{} must be a finite number, got '{}'", what, token));
+    return *v;
+  }
+  long long index(std::string_view token, long long lo, long long hi, std::string_view what) const {
+    const auto v = integer(token);
+    if (!v) fail(fmt::format("{} must be an integer, got '{}'", what, token));
+    if (*v < lo || *v > hi) fail(fmt::format("{} {} is out of range [{}, {}]", what, *v, lo, hi));
+    return *v;
+  }
+
+ private:
+  std::string_view text_;
+  std::string source_;
+  char comment_;
+  std::size_t pos_ = 0;
+  int line_ = 0;
+};
+
+void check_obj(std::string_view text, const std::string& source) {
+  Lines in(text, source, '#');
+  std::vector<std::string_view> t;
+  long long vertices = 0;
+  while (in.next(t)) {
+    if (t[0] == "v") {
+      if (t.size() < 4) in.fail(fmt::format("vertex {} needs three coordinates, got {}", vertices + 1, t.size() - 1));
+      for (int i = 1; i <= 3; ++i) in.number(t[i], "a vertex coordinate");
+      ++vertices;
+    } else if (t[0] == "f") {
+      if (t.size() < 4) in.fail(fmt::format("a face needs at least three vertices, got {}", t.size() - 1));
+      for (std::size_t i = 1; i < t.size(); ++i) {
+        const std::string_view idx = t[i].substr(0, t[i].find('/'));  // "v/vt/vn": the position index
+        const long long v = in.index(idx, -vertices, vertices, "a face's vertex index");
+        if (v == 0) in.fail("a face's vertex index is 0 (OBJ indices start at 1)");
+      }
+    }
+  }
+}
+
+void check_off(std::string_view text, const std::string& source) {
+  Lines in(text, source, '#');
+  std::vector<std::string_view> t;
+  if (!in.next(t)) in.fail_at_end("no OFF header");
+  if (t[0] != "OFF") return;  // COFF, NOFF, 4OFF...: left to CGAL
+  t.erase(t.begin());  // "OFF nv nf ne" on one line is allowed
+  if (t.empty() && !in.next(t)) in.fail_at_end("missing the vertex, face and edge counts");
+  if (t.size() < 2) in.fail("expected the vertex and face counts");
+  const long long nv = in.index(t[0], 0, 1LL << 31, "the vertex count");
+  const long long nf = in.index(t[1], 0, 1LL << 31, "the face count");
+  for (long long v = 0; v < nv; ++v) {
+    if (!in.next(t)) in.fail_at_end(fmt::format("after {} of {} vertices", v, nv));
+    if (t.size() < 3) in.fail(fmt::format("vertex {} needs three coordinates", v));
+    for (int i = 0; i < 3; ++i) in.number(t[i], "a vertex coordinate");
+  }
+  for (long long f = 0; f < nf; ++f) {
+    if (!in.next(t)) in.fail_at_end(fmt::format("after {} of {} faces", f, nf));
+    const long long k = in.index(t[0], 3, 1 << 20, "a face's vertex count");
+    if (static_cast<long long>(t.size()) < k + 1) in.fail(fmt::format("face {} lists fewer than {} vertices", f, k));
+    for (long long i = 1; i <= k; ++i) in.index(t[i], 0, nv - 1, "a face's vertex index");
+  }
+}
+
+void check_ascii_stl(std::string_view text, const std::string& source) {
+  Lines in(text, source, '\0');
+  std::vector<std::string_view> t;
+  int corners = 0;
+  bool in_facet = false, ended = false;
+  while (in.next(t)) {
+    if (t[0] == "facet") {
+      if (in_facet) in.fail("'facet' before the previous facet's 'endfacet'");
+      in_facet = true, corners = 0;
+    } else if (t[0] == "vertex") {
+      if (!in_facet) in.fail("'vertex' outside a facet");
+      if (t.size() < 4) in.fail("a vertex needs three coordinates");
+      for (int i = 1; i <= 3; ++i) in.number(t[i], "a vertex coordinate");
+      ++corners;
+    } else if (t[0] == "endfacet") {
+      if (corners != 3) in.fail(fmt::format("a facet needs three vertices, got {}", corners));
+      in_facet = false;
+    } else if (t[0] == "endsolid") {
+      ended = true;
+    }
+  }
+  if (in_facet || !ended) in.fail_at_end(in_facet ? "inside a facet" : "no 'endsolid'");
+}
+
+void check_binary_stl(const std::string& bytes, const std::string& source) {
+  if (bytes.size() < 84) throw Error(fmt::format("binary STL needs an 84-byte header, file has {} bytes", bytes.size()), source);
+  std::uint32_t n = 0;
+  std::memcpy(&n, bytes.data() + 80, 4);  // little-endian, as on every platform Sinew builds for
+  const std::uint64_t need = 84 + 50ULL * n;
+  if (bytes.size() < need)
+    throw Error(fmt::format("binary STL is truncated: {} triangles need {} bytes, file has {} (triangle {} is cut)", n,
+                            need, bytes.size(), (bytes.size() - 84) / 50),
+                source);
+  for (std::uint32_t f = 0; f < n; ++f)
+    for (int c = 0; c < 9; ++c) {
+      float x = 0;
+      std::memcpy(&x, bytes.data() + 84 + 50ULL * f + 12 + 4 * c, 4);
+      if (!std::isfinite(x)) throw Error(fmt::format("triangle {} has a non-finite coordinate", f), source);
+    }
+}
+
+bool is_ascii_stl(const std::string& bytes) {
+  if (bytes.rfind("solid", 0) != 0) return false;
+  // Binary files may also start with "solid"; a consistent binary size settles it.
+  if (bytes.size() >= 84) {
+    std::uint32_t n = 0;
+    std::memcpy(&n, bytes.data() + 80, 4);
+    if (bytes.size() == 84 + 50ULL * n) return false;
+  }
+  return bytes.find("facet") != std::string::npos || bytes.find("endsolid") != std::string::npos;
+}
+
+// ASCII PLY: vertex rows (every property a finite number) and face rows (count, then indices).
+void check_ascii_ply(std::string_view text, const std::string& source) {
+  Lines in(text, source, '\0');
+  std::vector<std::string_view> t;
+  struct Element {
+    std::string name;
+    long long count = 0;
+    int scalars = 0;
+    bool list = false;
+  };
+  std::vector<Element> elements;
+  while (true) {
+    if (!in.next(t)) in.fail_at_end("no 'end_header'");
+    if (t[0] == "end_header") break;
+    if (t[0] == "format" && (t.size() < 2 || t[1] != "ascii")) return;  // binary: left to CGAL
+    if (t[0] == "element") {
+      if (t.size() < 3) in.fail("'element' needs a name and a count");
+      elements.push_back({std::string(t[1]), in.index(t[2], 0, 1LL << 31, "an element count")});
+    } else if (t[0] == "property" && !elements.empty()) {
+      if (t.size() > 1 && t[1] == "list") {
+        elements.back().list = true;
+      } else {
+        ++elements.back().scalars;
+      }
+    }
+  }
+  long long nv = 0;
+  for (const Element& e : elements) {
+    if (e.name == "vertex") nv = e.count;
+    if (e.name != "vertex" && e.name != "face") return;  // other elements: rows of unknown shape
+    for (long long r = 0; r < e.count; ++r) {
+      if (!in.next(t)) in.fail_at_end(fmt::format("after {} of {} {} rows", r, e.count, e.name));
+      if (e.name == "vertex") {
+        if (static_cast<int>(t.size()) < e.scalars) in.fail(fmt::format("vertex {} has {} of {} values", r, t.size(), e.scalars));
+        for (int i = 0; i < e.scalars; ++i) in.number(t[i], "a vertex property");
+      } else {
+        const long long k = in.index(t[0], 3, 1 << 20, "a face's vertex count");
+        if (static_cast<long long>(t.size()) < k + 1) in.fail(fmt::format("face {} lists fewer than {} vertices", r, k));
+        for (long long i = 1; i <= k; ++i) in.index(t[i], 0, nv - 1, "a face's vertex index");
+      }
+    }
+  }
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+TriangleSurface read_triangle_surface(const std::filesystem::path& path, bool require_closed) {
+  const std::string source = path.string();
+  const std::string ext = lower_extension(path);
+  if (ext != ".obj" && ext != ".off" && ext != ".stl" && ext != ".ply")
+    throw Error(fmt::format("unknown surface file extension '{}'; supported: .obj, .off, .stl, .ply", ext), source);
+  const std::string bytes = read_text_file(path);  // names the file when it is missing or unreadable
+  if (bytes.empty()) throw Error("file is empty", source);
+
+  std::vector<Kernel::Point_3> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  std::istringstream stream(bytes);
+  bool ok = false;
+  const char* format = "";
+  if (ext == ".obj") {
+    format = "OBJ", check_obj(bytes, source);
+    ok = CGAL::IO::read_OBJ(stream, points, polygons);
+  } else if (ext == ".off") {
+    format = "OFF", check_off(bytes, source);
+    ok = CGAL::IO::read_OFF(stream, points, polygons);
+  } else if (ext == ".ply") {
+    format = "PLY", check_ascii_ply(bytes, source);
+    ok = CGAL::IO::read_PLY(stream, points, polygons);
+  } else {
+    format = "STL";
+    const bool ascii = is_ascii_stl(bytes);
+    ascii ? check_ascii_stl(bytes, source) : check_binary_stl(bytes, source);
+    std::vector<std::array<std::size_t, 3>> triangles;
+    ok = CGAL::IO::read_STL(stream, points, triangles, CGAL::parameters::use_binary_mode(!ascii));
+    for (const auto& tri : triangles) polygons.push_back({tri[0], tri[1], tri[2]});
+  }
+  if (!ok) throw Error(fmt::format("CGAL could not read the file as {} (the format's header or structure is malformed)", format), source);
+
+  TriangleSurface s;
+  s.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t v = 0; v < points.size(); ++v)
+    s.vertices.row(static_cast<Eigen::Index>(v)) << points[v].x(), points[v].y(), points[v].z();
+  std::vector<Eigen::Vector3i> triangles;
+  for (std::size_t f = 0; f < polygons.size(); ++f) {
+    const auto& p = polygons[f];
+    if (p.size() < 3) throw Error(fmt::format("polygon {} has only {} vertices", f, p.size()), source);
+    for (std::size_t k = 1; k + 1 < p.size(); ++k)  // fan: exact for convex polygons
+      triangles.emplace_back(static_cast<int>(p[0]), static_cast<int>(p[k]), static_cast<int>(p[k + 1]));
+  }
+  s.faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (std::size_t f = 0; f < triangles.size(); ++f) s.faces.row(static_cast<Eigen::Index>(f)) = triangles[f].transpose();
+  s.validate(source, require_closed);
+  return s;
+}
+
+}  // namespace sinew

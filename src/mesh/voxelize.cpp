@@ -1,0 +1,134 @@
+#include "sinew/mesh/voxelize.hpp"
+
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+#include <vector>
+
+#include "sinew/core/error.hpp"
+
+namespace sinew {
+namespace {
+
+constexpr double kMaxCells = 5e7;  // as for scene lattices
+
+// Corner a (VTK_HEXAHEDRON order) of a cell as offsets along x, y, z.
+constexpr std::array<std::array<int, 3>, 8> kCorner = {
+    {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+
+}  // namespace
+
+double voxel_cell_size(const Eigen::AlignedBox3d& bounds, const VoxelizeOptions& options) {
+  if (options.cell_size.has_value() == options.resolution.has_value())
+    throw Error("give exactly one of cell_size or resolution", "voxelize");
+  if (options.cell_size) {
+    if (!(*options.cell_size > 0.0 && std::isfinite(*options.cell_size)))
+      throw Error(fmt::format("cell_size must be a positive finite number, got {}", *options.cell_size), "voxelize");
+    return *options.cell_size;
+  }
+  if (*options.resolution < 1) throw Error(fmt::format("resolution must be at least 1, got {}", *options.resolution), "voxelize");
+  return bounds.sizes().maxCoeff() / *options.resolution;
+}
+
+VolumeMesh voxelize_surface(const InsideTest& shape, const VoxelizeOptions& options) {
+  const Eigen::AlignedBox3d& bounds = shape.bounds();
+  const double h = voxel_cell_size(bounds, options);
+  Eigen::Vector3i cells;
+  for (int i = 0; i < 3; ++i)  // the tolerance keeps an exact multiple of h from adding an empty layer
+    cells(i) = std::max(1, static_cast<int>(std::ceil(bounds.sizes()(i) / h - 1e-9)));
+  if (cells.cast<double>().prod() > kMaxCells)
+    throw Error(fmt::format("the lattice would have {:.3g} cells (the limit is {:.0e}); use a larger cell_size",
+                            cells.cast<double>().prod(), kMaxCells),
+                "voxelize");
+  const Eigen::Vector3d origin = bounds.min();
+  auto cell_id = [&](int i, int j, int k) { return (static_cast<Eigen::Index>(k) * cells(1) + j) * cells(0) + i; };
+  // Crossing test on a box shrunk by a hair: a cell that only touches the surface along its own
+  // boundary (a lattice-aligned face of a cube) is not crossing it.
+  const double shrink = 1e-7 * h;
+  std::vector<char> kept(static_cast<size_t>(cells.prod()), 0);
+  for (int k = 0; k < cells(2); ++k)
+    for (int j = 0; j < cells(1); ++j)
+      for (int i = 0; i < cells(0); ++i) {
+        const Eigen::Vector3d lo = origin + h * Eigen::Vector3d(i, j, k);
+        const Eigen::Vector3d hi = lo + Eigen::Vector3d::Constant(h);
+        bool keep = shape.inside(0.5 * (lo + hi));
+        if (!keep && options.keep_crossing)
+          keep = shape.intersects(Eigen::AlignedBox3d(lo.array() + shrink, hi.array() - shrink));
+        kept[cell_id(i, j, k)] = keep;
+      }
+
+  // Vertex copies. Grid vertex (i, j, k) has up to 8 cells around it (offset d in {0,1}^3 is
+  // the cell (i - 1, j - 1, k - 1) + d); without the non-manifold option all of them share one
+  // copy, with it each face-connected group (offsets differing in one bit share a face) gets
+  // its own. Groups are recomputed when the elements are built, so only the first copy's index
+  // is stored per grid vertex (4 bytes, not 8 per cell around it).
+  const Eigen::Vector3i nv = cells.array() + 1;
+  auto vertex_id = [&](int i, int j, int k) { return (static_cast<Eigen::Index>(k) * nv(1) + j) * nv(0) + i; };
+  // group[d] for the kept cells around the vertex (-1: no kept cell there); returns the count.
+  auto groups_at = [&](int i, int j, int k, std::array<int, 8>& group) {
+    std::array<bool, 8> present{};
+    for (int d = 0; d < 8; ++d) {
+      const int ci = i - 1 + (d & 1), cj = j - 1 + ((d >> 1) & 1), ck = k - 1 + ((d >> 2) & 1);
+      present[d] = ci >= 0 && cj >= 0 && ck >= 0 && ci < cells(0) && cj < cells(1) && ck < cells(2) &&
+                   kept[cell_id(ci, cj, ck)];
+    }
+    group.fill(-1);
+    int groups = 0;
+    for (int d = 0; d < 8; ++d) {
+      if (!present[d] || group[d] >= 0) continue;
+      std::array<int, 8> stack{};  // flood fill; each cell is pushed once
+      int top = 0;
+      stack[top++] = d;
+      group[d] = groups;
+      while (top > 0) {
+        const int c = stack[--top];
+        for (int e = 0; e < 8; ++e) {
+          if (!present[e] || group[e] >= 0) continue;
+          const int diff = c ^ e;
+          const bool face_neighbour = diff == 1 || diff == 2 || diff == 4;
+          if (!options.non_manifold || face_neighbour) group[e] = groups, stack[top++] = e;
+        }
+      }
+      ++groups;
+    }
+    return groups;
+  };
+  std::vector<int> first_copy(static_cast<size_t>(nv.prod()), -1);
+  std::vector<Eigen::Vector3d> positions;
+  std::array<int, 8> group;
+  for (int k = 0; k < nv(2); ++k)
+    for (int j = 0; j < nv(1); ++j)
+      for (int i = 0; i < nv(0); ++i) {
+        const int groups = groups_at(i, j, k, group);
+        if (groups == 0) continue;
+        first_copy[vertex_id(i, j, k)] = static_cast<int>(positions.size());
+        for (int n = 0; n < groups; ++n) positions.push_back(origin + h * Eigen::Vector3d(i, j, k));
+      }
+
+  std::vector<std::array<int, 8>> elements;
+  for (int k = 0; k < cells(2); ++k)
+    for (int j = 0; j < cells(1); ++j)
+      for (int i = 0; i < cells(0); ++i) {
+        if (!kept[cell_id(i, j, k)]) continue;
+        std::array<int, 8> e;
+        for (int a = 0; a < 8; ++a) {
+          const auto& c = kCorner[a];
+          groups_at(i + c[0], j + c[1], k + c[2], group);
+          // Seen from the vertex, this cell sits at offset 1 - c along each axis.
+          const int d = (1 - c[0]) | ((1 - c[1]) << 1) | ((1 - c[2]) << 2);
+          e[a] = first_copy[vertex_id(i + c[0], j + c[1], k + c[2])] + group[d];
+        }
+        elements.push_back(e);
+      }
+  if (elements.empty()) throw Error("no lattice cell lies inside or crosses the surface", "voxelize");
+  VolumeMesh mesh;
+  mesh.kind = ElementKind::Hex8;
+  mesh.vertices.resize(static_cast<Eigen::Index>(positions.size()), 3);
+  for (size_t v = 0; v < positions.size(); ++v) mesh.vertices.row(static_cast<Eigen::Index>(v)) = positions[v].transpose();
+  mesh.elements.resize(static_cast<Eigen::Index>(elements.size()), 8);
+  for (size_t e = 0; e < elements.size(); ++e)
+    for (int a = 0; a < 8; ++a) mesh.elements(static_cast<Eigen::Index>(e), a) = elements[e][a];
+  return mesh;
+}
+
+}  // namespace sinew
