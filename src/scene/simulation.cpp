@@ -15,6 +15,7 @@
 #include "sinew/io/obj_writer.hpp"
 #include "sinew/io/vtk_writer.hpp"
 #include "sinew/mesh/surface.hpp"
+#include "sinew/scene/constrained_simulation.hpp"
 #include "sinew/solver/newton.hpp"
 
 namespace sinew {
@@ -227,6 +228,7 @@ Eigen::VectorXd external_forces(const Scene& scene, const Discretization& disc, 
 }
 
 RunSummary run_scene(const Scene& scene, const RunOptions& options) {
+  if (scene.constraints) return run_constrained_scene(scene, options);  // paper 001 dynamics
   const auto t_start = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t_start).count(); };
   const int frames = options.frames.value_or(scene.frames);
