@@ -37,8 +37,9 @@ std::pair<Vec3, Vec3> tangents(const Vec3& n) {
 }  // namespace
 
 struct ConstrainedStepper::Factorization {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
-  bool analysed = false;
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;         // A
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> lagrangian;  // H of the SQP model
+  bool analysed = false, lagrangian_analysed = false;
 };
 
 ConstrainedStepper::ConstrainedStepper(std::shared_ptr<const ElementEnergyModel> model, Eigen::VectorXd masses,
@@ -102,7 +103,9 @@ StepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
   const Eigen::VectorXd v_star = factor_->llt.solve(b);
   report.factor_seconds = since(t);
 
-  // ---- SQP: linearise at x_k = x0 + h v_k, solve the LCP, repeat while violated
+  // ---- SQP: linearise at x_k = x0 + h v_k and solve the subproblem
+  //   min 1/2 (v - v*)^T A (v - v*)  s.t.  C(x_k) / h + J_k (v - v_k) >= 0 (+ friction),
+  // whose Newton step from v_k is v_k - H^-1 g + H^-1 J^T lambda with g = A (v_k - v*).
   const std::optional<EnergyLimit>& limit = settings_.energy_limit;
   Eigen::VectorXd v_k = v_star;
   std::map<long, double> warm;  // multipliers of the previous LCP by constraint key
@@ -110,31 +113,28 @@ StepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
   auto t_lcp = Clock::now();
   for (int k = 0;; ++k) {
     const Eigen::VectorXd x_k = x0 + h * v_k;
-    // Nonlinear violation at x_k; gather the rows to linearise.
+    // Nonlinear violation at x_k; gather the rows to linearise. Row offsets: c / h for
+    // unilateral rows, the current sliding velocity J v_k - t . v_obstacle for friction rows.
     std::vector<Row> rows;
     double energy_violation = 0.0, max_energy = 0.0;
-    if (limit) {
-      for (Eigen::Index e = 0; e < disc.num_elements(); ++e) {
-        const double U = model_->element_energy(e, x_k);
-        max_energy = std::max(max_energy, U);
-        energy_violation = std::max(energy_violation, U / limit->max_energy - 1.0);
-        if (U < (1.0 - settings_.activation) * limit->max_energy && !ever_active.count(e)) continue;
-        const Eigen::VectorXd jac = energy_constraint_jacobian(*model_, e, x_k, *limit);
-        Row r;
-        r.energy = true;
-        r.key = e;
-        for (int a = 0; a < disc.nodes(); ++a)
-          for (int i = 0; i < 3; ++i) {
-            const Eigen::Index dof = 3 * elements(e, a) + i;
-            if (!fixed_[dof]) r.jacobian.emplace_back(dof, jac(3 * a + i));
-          }
-        if (r.jacobian.empty()) continue;  // a fully fixed element cannot be helped
-        // C(x_k) + h J (v - v_k) >= 0 with v = v* + A^-1 J^T lambda (Eq. 22, 23).
-        r.offset = (1.0 - U / limit->max_energy) / h + row_dot(r, v_star) - row_dot(r, v_k);
-        rows.push_back(std::move(r));
-      }
-    } else {
-      for (Eigen::Index e = 0; e < disc.num_elements(); ++e) max_energy = std::max(max_energy, model_->element_energy(e, x_k));
+    for (Eigen::Index e = 0; e < disc.num_elements(); ++e) {
+      const double U = model_->element_energy(e, x_k);
+      max_energy = std::max(max_energy, U);
+      if (!limit) continue;
+      energy_violation = std::max(energy_violation, U / limit->max_energy - 1.0);
+      if (U < (1.0 - settings_.activation) * limit->max_energy && !ever_active.count(e)) continue;
+      const Eigen::VectorXd jac = energy_constraint_jacobian(*model_, e, x_k, *limit);
+      Row r;
+      r.energy = true;
+      r.key = e;
+      for (int a = 0; a < disc.nodes(); ++a)
+        for (int i = 0; i < 3; ++i) {
+          const Eigen::Index dof = 3 * elements(e, a) + i;
+          if (!fixed_[dof]) r.jacobian.emplace_back(dof, jac(3 * a + i));
+        }
+      if (r.jacobian.empty()) continue;  // a fully fixed element cannot be helped
+      r.offset = (1.0 - U / limit->max_energy) / h;  // C(x_k) / h (Eq. 22)
+      rows.push_back(std::move(r));
     }
     double penetration = 0.0;
     const std::vector<ContactCandidate> candidates = contacts_ ? contacts_(x_k) : std::vector<ContactCandidate>{};
@@ -150,7 +150,7 @@ StepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
       };
       Row normal = make_row(c.normal);
       normal.key = -1 - 3L * c.vertex;
-      normal.offset = c.gap / h + row_dot(normal, v_star) - row_dot(normal, v_k);
+      normal.offset = c.gap / h;
       const int normal_index = static_cast<int>(rows.size());
       rows.push_back(std::move(normal));
       if (c.friction > 0.0) {
@@ -160,37 +160,67 @@ StepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
           Row r = make_row(tangent);
           r.key = -1 - 3L * c.vertex - s++;
           r.bounds = {normal_index, c.friction};
-          // Sticking target: zero sliding velocity relative to the obstacle.
-          r.offset = row_dot(r, v_star) - tangent.dot(c.obstacle_velocity);
+          r.offset = row_dot(r, v_k) - tangent.dot(c.obstacle_velocity);  // target: no sliding
           rows.push_back(std::move(r));
         }
       }
     }
-    report.energy_violation = energy_violation;
+    report.energy_violation = std::max(0.0, energy_violation);
     report.penetration = penetration;
     report.max_element_energy = max_energy;
     const bool satisfied = energy_violation <= settings_.energy_tolerance && penetration <= settings_.contact_tolerance;
-    // Stop when the nonlinear constraints hold (after at least one LCP if any was violated, so
-    // friction of resting contacts is applied), or when the iteration budget is spent.
     if (satisfied || k >= settings_.sqp_max_iterations) {
-      report.converged = satisfied && (k == 0 || report.pgs_residual <= settings_.pgs.tolerance);
+      report.converged = satisfied;
       v = v_k;
       break;
     }
 
-    // ---- LCP (Eq. 23): W = J A^-1 J^T with the columns A^-1 J^T from the one factorisation
+    // ---- quadratic model: H = A plus the curvature of the energy constraints with lambda > 0
+    auto* solver = &factor_->llt;
+    if (limit && k > 0) {
+      std::vector<Eigen::Triplet<double>> extra;
+      for (const auto& [key, lambda_e] : warm) {
+        if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
+        const Eigen::MatrixXd He = model_->element_energy_hessian(key, x_k) * (h * lambda_e / limit->max_energy);
+        for (int a = 0; a < disc.nodes(); ++a)
+          for (int o = 0; o < disc.nodes(); ++o)
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j) {
+                const Eigen::Index r = 3 * elements(key, a) + i, c = 3 * elements(key, o) + j;
+                if (!fixed_[r] && !fixed_[c]) extra.emplace_back(r, c, He(3 * a + i, 3 * o + j));
+              }
+      }
+      if (!extra.empty()) {
+        Eigen::SparseMatrix<double> E(n, n);
+        E.setFromTriplets(extra.begin(), extra.end());
+        const Eigen::SparseMatrix<double> H = A + E;  // same pattern: A holds every element block
+        if (!factor_->lagrangian_analysed) factor_->lagrangian.analyzePattern(H);
+        factor_->lagrangian_analysed = true;
+        factor_->lagrangian.factorize(H);
+        if (factor_->lagrangian.info() != Eigen::Success) {
+          factor_->lagrangian.analyzePattern(H);
+          factor_->lagrangian.factorize(H);
+        }
+        if (factor_->lagrangian.info() != Eigen::Success)
+          throw Error("SQP Lagrangian Hessian is not positive definite", "constrained stepper");
+        solver = &factor_->lagrangian;
+      }
+    }
+    const Eigen::VectorXd d0 = k == 0 ? Eigen::VectorXd::Zero(n) : Eigen::VectorXd(solver->solve(A * (v_k - v_star)));
+
+    // ---- LCP (Eq. 23): W = J H^-1 J^T with the columns H^-1 J^T from the one factorisation
     const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
     Eigen::MatrixXd Jt = Eigen::MatrixXd::Zero(n, m);
     Eigen::VectorXd q(m), lambda(m);
     std::vector<LcpRow> bounds(m);
     for (Eigen::Index i = 0; i < m; ++i) {
       for (const auto& [dof, value] : rows[i].jacobian) Jt(dof, i) += value;
-      q(i) = rows[i].offset;
+      q(i) = rows[i].offset - row_dot(rows[i], d0);
       bounds[i] = rows[i].bounds;
       const auto w = warm.find(rows[i].key);
       lambda(i) = w == warm.end() ? 0.0 : w->second;
     }
-    const Eigen::MatrixXd Y = factor_->llt.solve(Jt);  // A^-1 J^T
+    const Eigen::MatrixXd Y = solver->solve(Jt);  // H^-1 J^T
     Eigen::MatrixXd W(m, m);
     for (Eigen::Index i = 0; i < m; ++i)
       for (Eigen::Index j = 0; j < m; ++j) W(i, j) = row_dot(rows[i], Y.col(j));
@@ -199,6 +229,7 @@ StepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
     report.sqp_iterations = k + 1;
     report.pgs_iterations += pgs.iterations;
     report.pgs_residual = pgs.residual;
+    report.pgs_unconverged += pgs.converged ? 0 : 1;
     report.active_energy = report.active_contacts = 0;
     warm.clear();
     for (Eigen::Index i = 0; i < m; ++i) {
@@ -211,7 +242,7 @@ StepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
         ++report.active_contacts;
       }
     }
-    v_k = v_star + Y * lambda;  // Eq. 21
+    v_k = v_k - d0 + Y * lambda;  // Eq. 21 for k = 0
   }
   report.lcp_seconds = since(t_lcp);
   x = x0 + h * v;

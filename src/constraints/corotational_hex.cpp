@@ -100,6 +100,14 @@ Eigen::VectorXd CorotationalHex::element_energy_gradient(Eigen::Index e, const E
   return g;
 }
 
+Eigen::MatrixXd CorotationalHex::element_energy_hessian(Eigen::Index e, const Eigen::VectorXd& x) const {
+  const Mat3 R = rotation(e, x);
+  Eigen::MatrixXd H(24, 24);
+  for (int a = 0; a < 8; ++a)
+    for (int b = 0; b < 8; ++b) H.block<3, 3>(3 * a, 3 * b) = R * K_[e].block<3, 3>(3 * a, 3 * b) * R.transpose();
+  return H;
+}
+
 Eigen::VectorXd CorotationalHex::forces(const Eigen::VectorXd& x) const {
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;

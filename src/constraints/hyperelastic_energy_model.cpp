@@ -32,6 +32,17 @@ Eigen::VectorXd HyperelasticEnergyModel::element_energy_gradient(Eigen::Index e,
   return ge.reshaped();
 }
 
+Eigen::MatrixXd HyperelasticEnergyModel::element_energy_hessian(Eigen::Index e, const Eigen::VectorXd& x) const {
+  const Discretization& d = form_.discretization();
+  const Eigen::Matrix3Xd xe = d.element_positions(e, x);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(3 * d.nodes(), 3 * d.nodes());
+  for (int q = 0; q < d.quadrature_points(); ++q) {
+    const Eigen::MatrixX3d& D = d.gradients(e, q);
+    add_element_hessian(D, form_.material().projected_hessian(xe * D, Projection::Clamp), d.weight(e, q), K);
+  }
+  return K;
+}
+
 Eigen::VectorXd HyperelasticEnergyModel::forces(const Eigen::VectorXd& x) const {
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
   form_.add_gradient(x, g);

@@ -5,8 +5,11 @@
 //   0 <= lambda  perp  J A^-1 J^T lambda + C/h + J (v* - v_k) >= 0        (Eq. 23 at v_k = v*)
 // is solved by projected Gauss-Seidel together with Coulomb friction; v = v* + A^-1 J^T lambda
 // (Eq. 21). The linearisation is repeated at the new positions (SQP) until the nonlinear
-// constraints hold within tolerance. A is factorised once per step (CHOLMOD) and reused for
-// every column of A^-1 J^T.
+// constraints hold within tolerance. From the second SQP iteration on, the quadratic model's
+// matrix is the Lagrangian Hessian H = A + h sum_e (lambda_e / U_max) d2U_e/dx2: without the
+// energy constraints' curvature the repeated linearisation can drift away from the limit
+// instead of converging. A (and H) is factorised by CHOLMOD with the symbolic analysis reused,
+// and one factorisation serves every column of H^-1 J^T.
 #include <memory>
 #include <optional>
 #include <vector>
@@ -30,7 +33,8 @@ struct ConstrainedStepSettings {
 };
 
 struct StepReport {
-  bool converged = false;          // SQP met both tolerances (and every PGS solve converged)
+  bool converged = false;          // SQP met both nonlinear tolerances
+  int pgs_unconverged = 0;         // LCP solves that stopped at the PGS iteration cap
   int sqp_iterations = 0;          // LCP solves (0: the unconstrained step already satisfied all)
   int pgs_iterations = 0;          // summed over the SQP iterations
   double pgs_residual = 0.0;       // of the last LCP solve

@@ -39,6 +39,8 @@ class CorotationalHex final : public ElementEnergyModel {
   Eigen::VectorXd element_energy_gradient(Eigen::Index e, const Eigen::VectorXd& x,
                                           JacobianKind kind) const override;
   bool supports(JacobianKind) const override { return true; }
+  // R K_e R^T (the rotation's change neglected, as in the warped stiffness).
+  Eigen::MatrixXd element_energy_hessian(Eigen::Index e, const Eigen::VectorXd& x) const override;
 
   // f = -sum_e R K_e (R^T x_e - X_e) and K = sum_e R K_e R^T (the usual warped stiffness).
   Eigen::VectorXd forces(const Eigen::VectorXd& x) const override;

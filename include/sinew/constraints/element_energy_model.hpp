@@ -30,6 +30,9 @@ class ElementEnergyModel {
   virtual Eigen::VectorXd element_energy_gradient(Eigen::Index e, const Eigen::VectorXd& x,
                                                   JacobianKind kind) const = 0;
   virtual bool supports(JacobianKind kind) const = 0;
+  // A PSD approximation of d2U_e/dx2 (3 * nodes square): the curvature of the energy
+  // constraints that the SQP iteration adds to its quadratic model (paper 001 §5).
+  virtual Eigen::MatrixXd element_energy_hessian(Eigen::Index e, const Eigen::VectorXd& x) const = 0;
 
   // Internal elastic forces -dE/dx and a PSD approximation of d2E/dx2 (3V x 3V).
   virtual Eigen::VectorXd forces(const Eigen::VectorXd& x) const = 0;

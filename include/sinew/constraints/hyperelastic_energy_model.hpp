@@ -18,6 +18,8 @@ class HyperelasticEnergyModel final : public ElementEnergyModel {
   Eigen::VectorXd element_energy_gradient(Eigen::Index e, const Eigen::VectorXd& x,
                                           JacobianKind kind) const override;
   bool supports(JacobianKind kind) const override { return kind == JacobianKind::Exact; }
+  // sum_q w_q dF/dx^T proj(d2Psi/dF2) dF/dx, eigenvalues clamped at zero.
+  Eigen::MatrixXd element_energy_hessian(Eigen::Index e, const Eigen::VectorXd& x) const override;
 
   Eigen::VectorXd forces(const Eigen::VectorXd& x) const override;
   Eigen::SparseMatrix<double> stiffness(const Eigen::VectorXd& x) const override;

@@ -17,7 +17,7 @@ struct LcpRow {
 
 struct PgsSettings {
   int max_iterations = 500;
-  double tolerance = 1e-8;  // on the projected residual max_i |W_ii (lambda_i - proj(lambda_i - w_i/W_ii))|
+  double tolerance = 1e-6;  // on the projected residual max_i |W_ii (lambda_i - proj(lambda_i - w_i/W_ii))|
 };
 
 struct PgsReport {
