@@ -3,7 +3,7 @@
 // collapsing high-resolution sphere (Fig. 5) and the exact vs warped-force Jacobian comparison
 // of §6.2, printed as tables.
 //
-//   energy_limit_bench [--quick] [--skip-fig5] [--fig5-cells 10] [--threads N]
+//   energy_limit_bench [--quick] [--skip-fig5] [--fig5-cells 10] [--repeats 3] [--threads N]
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <memory>
@@ -15,6 +15,19 @@ namespace {
 
 using namespace sinew;
 using namespace sinew::paper001;
+
+// Timings on a shared machine are noisy: each case runs `repeats` times (the simulation is
+// deterministic) and the fastest run is reported.
+int repeats = 3;
+template <class Run>
+auto fastest(const Run& run) {
+  auto best = run();
+  for (int i = 1; i < repeats; ++i) {
+    auto next = run();
+    if (next.totals.seconds < best.totals.seconds) best = next;
+  }
+  return best;
+}
 
 void print_totals_header() {
   fmt::print("{:<28} {:>8} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8}\n", "case", "steps", "ms/step", "SQP", "max SQP",
@@ -36,6 +49,7 @@ int main(int argc, char** argv) {
   app.add_flag("--skip-fig5", skip_fig5, "leave out the high-resolution collapsing sphere");
   app.add_option("--fig5-cells", fig5_cells, "cells across the high-resolution sphere");
   app.add_option("--threads", threads, "TBB threads (default: all)");
+  app.add_option("--repeats", repeats, "runs per case; the fastest is reported")->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
   std::unique_ptr<tbb::global_control> control;
   if (threads > 0) control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
@@ -58,7 +72,7 @@ int main(int argc, char** argv) {
     config.young = c.young;
     config.max_energy = c.limit;
     config.duration = 2.0 * scale;
-    const BeamResult r = run_beam(config);
+    const BeamResult r = fastest([&] { return run_beam(config); });
     print_totals(c.name, r.totals);
     beams.emplace_back(c.name, r);
   }
@@ -70,7 +84,7 @@ int main(int argc, char** argv) {
   fmt::print("\n== Jacobian comparison (paper 001 §6.2): beam, Y = 150 kPa; paper: exact is 80.4 % faster on average ==\n");
   fmt::print("{:<10} {:>10} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>8}\n", "U_max (J)", "Jacobian", "ms/step", "SQP",
              "max SQP", "PGS", "act.E", "unconv", "max viol", "gain");
-  double gain_sum = 0.0;
+  double gain_sum = 0.0, pgs_gain_sum = 0.0;
   int gains = 0;
   for (double limit : {0.5, 0.1, 0.05, 0.01}) {
     Totals t[2];
@@ -79,18 +93,21 @@ int main(int argc, char** argv) {
       config.max_energy = limit;
       config.jacobian = k == 0 ? JacobianKind::Exact : JacobianKind::Warped;
       config.duration = 2.0 * scale;
-      t[k] = run_beam(config).totals;
+      t[k] = fastest([&] { return run_beam(config); }).totals;
     }
     const double gain = 100.0 * (t[1].seconds / t[0].seconds - 1.0);  // time(warped) / time(exact) - 1
+    const double pgs_gain = 100.0 * (static_cast<double>(t[1].pgs_iterations) / t[0].pgs_iterations - 1.0);
     gain_sum += gain;
+    pgs_gain_sum += pgs_gain;
     ++gains;
     for (int k = 0; k < 2; ++k)
       fmt::print("{:<10} {:>10} {:>9.3f} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9.1e} {:>8}\n", limit, k == 0 ? "exact" : "warped",
                  t[k].ms_per_step(), t[k].sqp_iterations, t[k].max_sqp_iterations, t[k].pgs_iterations,
                  t[k].max_active_energy, t[k].unconverged_steps, t[k].max_energy_violation,
-                 k == 0 ? fmt::format("{:+.1f}%", gain) : "");
+                 k == 0 ? fmt::format("{:+.1f}%", gain) : fmt::format("PGS {:+.1f}%", pgs_gain));
   }
-  fmt::print("average gain of exact over warped (time): {:+.1f} % (paper: +80.4 %, max +130.8 %)\n", gain_sum / gains);
+  fmt::print("average gain of exact over warped: time {:+.1f} %, PGS iterations {:+.1f} % (paper: +80.4 %, max +130.8 %)\n",
+             gain_sum / gains, pgs_gain_sum / gains);
 
   // ---- Fig. 4: falling sphere
   fmt::print("\n== Falling sphere (paper 001 Fig. 4): R = 1 m, 27 hexahedra, 500 kg/m^3, dropped 2 m, mu = 0.5, h = 0.01 s, "
@@ -109,7 +126,7 @@ int main(int argc, char** argv) {
     config.young = c.young;
     config.max_energy = c.limit;
     config.duration = 3.0 * scale;
-    const SphereResult r = run_falling_sphere(config);
+    const SphereResult r = fastest([&] { return run_falling_sphere(config); });
     print_totals(c.name, r.totals);
     spheres.emplace_back(c.name, r);
   }

@@ -120,6 +120,36 @@ TEST(CorotationalHex, ExactGradientMatchesFiniteDifferencesOfEnergy) {
   }
 }
 
+TEST(CorotationalHex, StiffnessIsTheForceDerivativeAtRestAndAssemblesElementBlocks) {
+  VolumeMesh mesh = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.4, 0.3, 0.2), Eigen::Vector3i(2, 2, 1));
+  auto d = std::make_shared<Discretization>(mesh);
+  const CorotationalHex model = corotational(d);
+  // At rest the rotation's change does not enter df/dx, so -K is the exact force Jacobian
+  // there (and R K R^T of a rigidly rotated rest state is its rotated copy).
+  const Eigen::VectorXd X = d->mesh().rest_positions();
+  const Eigen::MatrixXd K(model.stiffness(X));
+  Eigen::MatrixXd fd(X.size(), X.size());
+  for (Eigen::Index i = 0; i < X.size(); ++i) {
+    Eigen::VectorXd xp = X, xm = X;
+    xp(i) += 1e-6;
+    xm(i) -= 1e-6;
+    fd.col(i) = -(model.forces(xp) - model.forces(xm)) / 2e-6;
+  }
+  EXPECT_LE((K - fd).norm(), 1e-6 * K.norm());
+  // Away from rest: the assembled matrix is the sum of the element blocks R K_e R^T.
+  const Eigen::VectorXd x = deformed(*d, some_rotation(), 0.02, 13);
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(x.size(), x.size());
+  for (Eigen::Index e = 0; e < d->num_elements(); ++e) {
+    const Eigen::MatrixXd He = model.element_energy_hessian(e, x);
+    for (int a = 0; a < 8; ++a)
+      for (int b = 0; b < 8; ++b)
+        dense.block<3, 3>(3 * d->mesh().elements(e, a), 3 * d->mesh().elements(e, b)) += He.block<3, 3>(3 * a, 3 * b);
+  }
+  const Eigen::MatrixXd Kx(model.stiffness(x));
+  EXPECT_LE((Kx - dense).norm(), 1e-12 * dense.norm());
+  EXPECT_LE((Kx - Kx.transpose()).norm(), 1e-12 * dense.norm());
+}
+
 TEST(EnergyLimit, ConstraintJacobianMatchesFiniteDifferencesOfC) {
   auto d = one_hex();
   const CorotationalHex model = corotational(d);

@@ -1,5 +1,6 @@
 #include "sinew/constraints/corotational_hex.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 #include "sinew/core/error.hpp"
@@ -26,7 +27,8 @@ CorotationalHex::CorotationalHex(std::shared_ptr<const Discretization> disc, Hoo
   const Discretization& d = *disc_;
   if (d.mesh().kind != ElementKind::Hex8) throw Error("corotational hexahedra need a hexahedral mesh", "corotational");
   const double lambda = c_.E2, mu = c_.E3;
-  const Eigen::VectorXd X = d.mesh().rest_positions();
+  rest_ = d.mesh().rest_positions();
+  const Eigen::VectorXd& X = rest_;
   K_.resize(d.num_elements());
   tet_rest_inverse_.resize(d.num_elements());
   for (Eigen::Index e = 0; e < d.num_elements(); ++e) {
@@ -44,6 +46,29 @@ CorotationalHex::CorotationalHex(std::shared_ptr<const Discretization> disc, Hoo
     }
     K_[e] = K;
     tet_rest_inverse_[e] = tet_edges(d.element_positions(e, X)).inverse();
+  }
+  // Stiffness pattern: every DOF pair of every element.
+  const auto& elements = d.mesh().elements;
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<size_t>(d.num_elements()) * 576);
+  for (Eigen::Index e = 0; e < d.num_elements(); ++e)
+    for (int c = 0; c < 24; ++c)
+      for (int r = 0; r < 24; ++r) t.emplace_back(3 * elements(e, r / 3) + r % 3, 3 * elements(e, c / 3) + c % 3, 0.0);
+  pattern_.resize(d.num_dofs(), d.num_dofs());
+  pattern_.setFromTriplets(t.begin(), t.end());
+  pattern_.makeCompressed();
+  slots_.resize(d.num_elements());
+  for (Eigen::Index e = 0; e < d.num_elements(); ++e) {
+    slots_[e].resize(576);
+    for (int c = 0; c < 24; ++c) {
+      const int col = 3 * elements(e, c / 3) + c % 3;
+      const int* begin = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col];
+      const int* end = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col + 1];
+      for (int r = 0; r < 24; ++r) {
+        const int row = 3 * elements(e, r / 3) + r % 3;
+        slots_[e][c * 24 + r] = static_cast<int>(std::lower_bound(begin, end, row) - pattern_.innerIndexPtr());
+      }
+    }
   }
 }
 
@@ -69,7 +94,7 @@ Eigen::VectorXd CorotationalHex::element_energy_gradient(Eigen::Index e, const E
                                                          JacobianKind kind) const {
   const Discretization& d = *disc_;
   const Eigen::Matrix3Xd xe = d.element_positions(e, x);
-  const Eigen::Matrix3Xd Xe = d.element_positions(e, d.mesh().rest_positions());
+  const Eigen::Matrix3Xd Xe = d.element_positions(e, rest_);
   const Mat3 F_tet = tet_edges(xe) * tet_rest_inverse_[e];
   const SignedSvd svd = signed_svd(F_tet);
   const Mat3 R = svd.U * svd.V.transpose();
@@ -121,20 +146,18 @@ Eigen::VectorXd CorotationalHex::forces(const Eigen::VectorXd& x) const {
 
 Eigen::SparseMatrix<double> CorotationalHex::stiffness(const Eigen::VectorXd& x) const {
   const Discretization& d = *disc_;
-  const auto& elements = d.mesh().elements;
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<size_t>(d.num_elements()) * 576);
+  Eigen::SparseMatrix<double> K = pattern_;
+  double* values = K.valuePtr();
   for (Eigen::Index e = 0; e < d.num_elements(); ++e) {
     const Mat3 R = rotation(e, x);
-    for (int a = 0; a < 8; ++a)
-      for (int b = 0; b < 8; ++b) {
+    const std::vector<int>& slot = slots_[e];
+    for (int b = 0; b < 8; ++b)
+      for (int a = 0; a < 8; ++a) {
         const Mat3 B = R * K_[e].block<3, 3>(3 * a, 3 * b) * R.transpose();
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) t.emplace_back(3 * elements(e, a) + i, 3 * elements(e, b) + j, B(i, j));
+        for (int j = 0; j < 3; ++j)
+          for (int i = 0; i < 3; ++i) values[slot[(3 * b + j) * 24 + 3 * a + i]] += B(i, j);
       }
   }
-  Eigen::SparseMatrix<double> K(x.size(), x.size());
-  K.setFromTriplets(t.begin(), t.end());
   return K;
 }
 

@@ -50,6 +50,11 @@ class CorotationalHex final : public ElementEnergyModel {
   std::shared_ptr<const Discretization> disc_;
   HookeCoefficients c_;
   std::vector<Eigen::MatrixXd> K_;
+  Eigen::VectorXd rest_;  // rest positions X
+  // The stiffness pattern, built once, and per element the value slot of each of its 24 x 24
+  // entries (column-major), so assembling R K_e R^T is a scatter without sorting.
+  Eigen::SparseMatrix<double> pattern_;
+  std::vector<std::vector<int>> slots_;
   std::vector<Mat3> tet_rest_inverse_;  // (X_2 - X_0, X_5 - X_0, X_7 - X_0)^-1 per element
 };
 
