@@ -83,7 +83,10 @@ TEST(SceneConstraints, RunWritesPerFrameSolverFiguresAndHoldsTheLimit) {
   std::ofstream(file) << beam_scene().dump();
   RunOptions options;
   options.out_dir = dir.path() / "out";
+  std::filesystem::create_directories(options.out_dir);
+  std::ofstream(options.out_dir / "frame_0042.vtu") << "from an earlier, longer run";
   const RunSummary summary = run_scene(load_scene(file), options);
+  EXPECT_FALSE(std::filesystem::exists(options.out_dir / "frame_0042.vtu"));  // a fresh run replaces old outputs
   ASSERT_EQ(summary.frames.size(), 3u);
   EXPECT_TRUE(summary.all_converged());
   const json s = json::parse(std::ifstream(options.out_dir / "summary.json"));

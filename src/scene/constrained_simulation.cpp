@@ -113,7 +113,10 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
   const bool writing = !options.out_dir.empty();
   const auto& out = options.out_dir;
   std::vector<std::pair<double, std::string>> pvd;
-  if (writing) ensure_directory(out);
+  if (writing) {
+    remove_previous_outputs(out);
+    ensure_directory(out);
+  }
   auto element_energies = [&] {
     Eigen::VectorXd U(disc->num_elements());
     for (Eigen::Index e = 0; e < U.size(); ++e) U(e) = model->element_energy(e, x);

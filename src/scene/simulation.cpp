@@ -146,6 +146,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& out, const std::string& 
   return c;
 }
 
+}  // namespace
+
 // A fresh run replaces the files an earlier run left in the folder (only the names Sinew
 // writes), so a shorter run does not leave stale frames behind.
 void remove_previous_outputs(const std::filesystem::path& out) {
@@ -159,6 +161,8 @@ void remove_previous_outputs(const std::filesystem::path& out) {
     }
   }
 }
+
+namespace {
 
 // Everything the load steps need, built and validated before anything is written.
 struct Model {
