@@ -37,12 +37,14 @@ void run(const Options& o, int& exit_code) {
   ro.resume = o.resume;
   const bool tty = isatty(STDERR_FILENO);
   if (!o.quiet) {
-    ro.progress = [tty](const ProgressEvent& e) {
+    // Constrained dynamics (paper 001) reports SQP and PGS iterations in the same slots.
+    const bool sqp = scene.constraints.has_value();
+    ro.progress = [tty, outer = sqp ? "SQP" : "Newton", inner = sqp ? "PGS" : "linear"](const ProgressEvent& e) {
       if (e.frame_done) {
         const FrameRecord& r = *e.record;
         if (tty) fmt::print(stderr, "\r\033[K");
-        fmt::print(stderr, "frame {}/{}: {} Newton, {} linear iterations, residual {:.3e}, volume {:.6g}, {:.2f} s{}\n", e.frame,
-                   e.frames, r.newton_iterations, r.linear_iterations, r.residual, r.volume, r.seconds,
+        fmt::print(stderr, "frame {}/{}: {} {}, {} {} iterations, residual {:.3e}, volume {:.6g}, {:.2f} s{}\n", e.frame,
+                   e.frames, r.newton_iterations, outer, r.linear_iterations, inner, r.residual, r.volume, r.seconds,
                    r.converged ? "" : "  NOT CONVERGED: " + r.failure);
       } else if (tty) {
         fmt::print(stderr, "\r\033[Kframe {}/{}  Newton {}  residual {:.3e}  elapsed {:.1f} s", e.frame, e.frames,

@@ -209,7 +209,8 @@ SolverSpec parse_solver(JsonObject o) {
 Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file) {
   const std::string name = file.string();
   JsonObject root(json, name);
-  root.allow({"description", "mesh", "material", "density", "boundary", "loads", "solver", "frames", "output"});
+  root.allow({"description", "mesh", "material", "density", "boundary", "loads", "solver", "frames", "output",
+              "constraints"});
   Scene scene;
   scene.file = file;
   scene.description = root.string("description", "");
@@ -248,6 +249,7 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
     loads.finish();
   }
   if (root.has("solver")) scene.solver = parse_solver(root.object("solver"));
+  if (root.has("constraints")) scene.constraints = parse_constraints(root.object("constraints"));
   scene.frames = root.integer("frames", 1, 1);
   if (scene.frames > kMaxFrames) root.fail("frames", fmt::format("must be at most {}, got {}", kMaxFrames, scene.frames));
   if (root.has("output")) {

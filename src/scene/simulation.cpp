@@ -16,6 +16,7 @@
 #include "sinew/io/vtk_writer.hpp"
 #include "sinew/scene/scene_surface.hpp"
 #include "sinew/mesh/surface.hpp"
+#include "sinew/scene/constrained_simulation.hpp"
 #include "sinew/solver/newton.hpp"
 
 namespace sinew {
@@ -146,6 +147,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& out, const std::string& 
   return c;
 }
 
+}  // namespace
+
 // A fresh run replaces the files an earlier run left in the folder (only the names Sinew
 // writes), so a shorter run does not leave stale frames behind.
 void remove_previous_outputs(const std::filesystem::path& out) {
@@ -159,6 +162,8 @@ void remove_previous_outputs(const std::filesystem::path& out) {
     }
   }
 }
+
+namespace {
 
 // Everything the load steps need, built and validated before anything is written.
 struct Model {
@@ -228,6 +233,7 @@ Eigen::VectorXd external_forces(const Scene& scene, const Discretization& disc, 
 }
 
 RunSummary run_scene(const Scene& scene, const RunOptions& options) {
+  if (scene.constraints) return run_constrained_scene(scene, options);  // paper 001 dynamics
   const auto t_start = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t_start).count(); };
   const int frames = options.frames.value_or(scene.frames);

@@ -13,6 +13,7 @@
 #include "sinew/material/spec.hpp"
 #include "sinew/mesh/selection.hpp"
 #include "sinew/mesh/volume_mesh.hpp"
+#include "sinew/scene/scene_constraints.hpp"
 #include "sinew/scene/surface_sources.hpp"
 #include "sinew/solver/linear_solver.hpp"
 #include "sinew/solver/newton.hpp"
@@ -94,6 +95,7 @@ struct Scene {
   SolverSpec solver;
   int frames = 1;
   OutputSpec output;
+  std::optional<ConstraintsSpec> constraints;  // dynamics with paper 001 constraints (docs/energy-limits.md)
 };
 
 Scene load_scene(const std::filesystem::path& file);

@@ -76,4 +76,7 @@ Eigen::VectorXd external_forces(const Scene& scene, const Discretization& disc, 
 // the checkpoint keeps the last converged frame).
 RunSummary run_scene(const Scene& scene, const RunOptions& options);
 
+// Removes the files an earlier run wrote into out (frames, surfaces, pvd, summary, checkpoint).
+void remove_previous_outputs(const std::filesystem::path& out);
+
 }  // namespace sinew

@@ -1,0 +1,213 @@
+#include "sinew/scene/constrained_simulation.hpp"
+
+#include <chrono>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "sinew/constraints/corotational_hex.hpp"
+#include "sinew/constraints/hyperelastic_energy_model.hpp"
+#include "sinew/core/error.hpp"
+#include "sinew/fem/mass.hpp"
+#include "sinew/io/atomic_file.hpp"
+#include "sinew/io/obj_writer.hpp"
+#include "sinew/io/vtk_writer.hpp"
+#include "sinew/mesh/surface.hpp"
+
+namespace sinew {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// What one frame (steps_per_frame steps) did, for summary.json.
+struct ConstrainedFrame {
+  int steps = 0, sqp_iterations = 0, max_sqp_iterations = 0, pgs_iterations = 0;
+  int active_energy = 0, active_contacts = 0;
+  double pgs_residual = 0.0, energy_violation = 0.0, penetration = 0.0, max_element_energy = 0.0;
+  double elastic_energy = 0.0, kinetic_energy = 0.0;
+  void add(const StepReport& r) {
+    ++steps;
+    sqp_iterations += r.sqp_iterations;
+    max_sqp_iterations = std::max(max_sqp_iterations, r.sqp_iterations);
+    pgs_iterations += r.pgs_iterations;
+    active_energy = std::max(active_energy, r.active_energy);
+    active_contacts = std::max(active_contacts, r.active_contacts);
+    pgs_residual = std::max(pgs_residual, r.pgs_residual);
+    energy_violation = std::max(energy_violation, r.energy_violation);
+    penetration = std::max(penetration, r.penetration);
+    max_element_energy = std::max(max_element_energy, r.max_element_energy);
+  }
+};
+
+nlohmann::json frame_json(const FrameRecord& r, const ConstrainedFrame& c, double time) {
+  return {{"frame", r.frame},
+          {"time", time},
+          {"converged", r.converged},
+          {"steps", c.steps},
+          {"sqp_iterations", c.sqp_iterations},
+          {"max_sqp_iterations_per_step", c.max_sqp_iterations},
+          {"pgs_iterations", c.pgs_iterations},
+          {"max_pgs_residual", c.pgs_residual},
+          {"max_energy_violation", c.energy_violation},
+          {"max_penetration", c.penetration},
+          {"max_active_energy_constraints", c.active_energy},
+          {"max_active_contacts", c.active_contacts},
+          {"max_element_energy", c.max_element_energy},
+          {"elastic_energy", c.elastic_energy},
+          {"kinetic_energy", c.kinetic_energy},
+          {"volume", r.volume},
+          {"seconds", r.seconds},
+          {"failure", r.failure}};
+}
+
+}  // namespace
+
+RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) {
+  const auto t_start = Clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t_start).count(); };
+  const ConstraintsSpec& spec = *scene.constraints;
+  const std::string file = scene.file.string();
+  const int frames = options.frames.value_or(scene.frames);
+  if (frames < 1) throw Error(fmt::format("must be at least 1, got {}", frames), "--frames");
+  if (options.resume) throw Error("resuming is not available for scenes with a constraints section (yet)", "--resume");
+
+  // ---- model, validated before anything is written
+  auto disc = std::make_shared<Discretization>(build_scene_mesh(scene), file + ": /mesh");
+  const VolumeMesh& mesh = disc->mesh();
+  const BuiltMaterial material = build_material_detailed(scene.material);
+  std::shared_ptr<const ElementEnergyModel> model;
+  if (spec.model == "corotational") {
+    if (mesh.kind != ElementKind::Hex8)
+      throw Error("the corotational model needs hexahedra (mesh element \"hex\")", file + ": /constraints/model");
+    // Hookean coefficients from the material's small-strain Lame parameters: E1 = lambda + 2 mu,
+    // E2 = lambda, E3 = mu (paper 001 §4.2).
+    const double lambda = material.lame.lambda, mu = material.lame.mu;
+    model = std::make_shared<CorotationalHex>(disc, HookeCoefficients{lambda + 2 * mu, lambda, mu});
+  } else {
+    model = std::make_shared<HyperelasticEnergyModel>(disc, material.material);
+  }
+  const BoundarySurface surface = boundary_surface(mesh);
+  const Eigen::VectorXd masses = lumped_mass(*disc, scene.density);
+  const Eigen::VectorXd forces = external_forces(scene, *disc, surface);
+  std::vector<char> fixed(disc->num_dofs(), 0);
+  for (size_t i = 0; i < scene.boundary.size(); ++i) {
+    const std::string where = fmt::format("{}: /boundary/{}", file, i);
+    if (!std::holds_alternative<Pinned>(scene.boundary[i].motion))
+      throw Error("only pinned boundaries are supported with a constraints section", where + "/motion");
+    for (int v : select_vertices(mesh.vertices, scene.boundary[i].select, where + "/select"))
+      fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = 1;
+  }
+  ContactProvider contacts;
+  if (spec.ground) contacts = ground_plane_contacts(spec.ground->normal, spec.ground->offset, spec.friction, spec.ground->margin);
+  ConstrainedStepper stepper(model, masses, forces, fixed, contacts, spec.step);
+
+  RunSummary summary;
+  summary.vertices = mesh.num_vertices();
+  summary.elements = mesh.num_elements();
+  for (Eigen::Index e = 0; e < disc->num_elements(); ++e) summary.rest_volume += disc->rest_volume(e);
+  summary.external_force = forces.reshaped(3, forces.size() / 3).rowwise().sum();
+  Eigen::VectorXd x = mesh.rest_positions(), v = Eigen::VectorXd::Zero(x.size());
+  for (Eigen::Index i = 0; i < mesh.num_vertices(); ++i)
+    if (!fixed[3 * i]) v.segment<3>(3 * i) = spec.initial_velocity;
+
+  // ---- outputs
+  const bool writing = !options.out_dir.empty();
+  const auto& out = options.out_dir;
+  std::vector<std::pair<double, std::string>> pvd;
+  if (writing) {
+    remove_previous_outputs(out);
+    ensure_directory(out);
+  }
+  auto element_energies = [&] {
+    Eigen::VectorXd U(disc->num_elements());
+    for (Eigen::Index e = 0; e < U.size(); ++e) U(e) = model->element_energy(e, x);
+    return U;
+  };
+  const double h = spec.step.time_step;
+  auto write_frame = [&](int frame) {
+    if (!writing || frame % scene.output.every != 0) return;
+    if (scene.output.vtu) {
+      VtuFields fields;
+      fields.cell_scalars = {{"energy", element_energies()}};
+      if (spec.step.energy_limit) fields.cell_scalars.push_back({"energy_ratio", element_energies() / spec.step.energy_limit->max_energy});
+      fields.point_vectors = {{"velocity", v}};
+      const std::string name = fmt::format("frame_{:04d}.vtu", frame);
+      write_vtu(out / name, mesh, x, fields);
+      pvd.emplace_back(frame * spec.steps_per_frame * h, name);
+      write_pvd(out / "simulation.pvd", pvd);
+    }
+    if (scene.output.obj) write_surface_obj(out / fmt::format("surface_{:04d}.obj", frame), mesh, surface, x);
+  };
+  nlohmann::json frames_json = nlohmann::json::array();
+  auto write_summary = [&] {
+    if (!writing) return;
+    int sqp = 0, pgs = 0;
+    for (const auto& f : frames_json) sqp += f["sqp_iterations"].get<int>(), pgs += f["pgs_iterations"].get<int>();
+    nlohmann::json s = {{"scene", file},
+                        {"description", scene.description},
+                        {"mode", "constrained dynamics (paper 001)"},
+                        {"model", model->name()},
+                        {"vertices", summary.vertices},
+                        {"elements", summary.elements},
+                        {"element", to_string(mesh.kind)},
+                        {"material", material.material->name()},
+                        {"lame", {{"lambda", material.lame.lambda}, {"mu", material.lame.mu}}},
+                        {"density", scene.density},
+                        {"rest_volume", summary.rest_volume},
+                        {"time_step", h},
+                        {"steps_per_frame", spec.steps_per_frame},
+                        {"energy_limit", spec.step.energy_limit ? nlohmann::json(spec.step.energy_limit->max_energy) : nlohmann::json()},
+                        {"jacobian", spec.step.energy_limit ? to_string(spec.step.energy_limit->jacobian) : "none"},
+                        {"frames_requested", frames},
+                        {"frames_completed", static_cast<int>(summary.frames.size())},
+                        {"total_sqp_iterations", sqp},
+                        {"total_pgs_iterations", pgs},
+                        {"all_converged", summary.all_converged()},
+                        {"frames", frames_json}};
+    write_file_atomically(out / "summary.json", [&](std::ostream& os) { os << s.dump(2) << '\n'; });
+  };
+  write_frame(0);
+
+  // ---- time stepping
+  for (int frame = 1; frame <= frames; ++frame) {
+    const auto t_frame = Clock::now();
+    if (options.progress) options.progress({frame, frames, 0, 0.0, elapsed(), false, nullptr});
+    FrameRecord record;
+    record.frame = frame;
+    ConstrainedFrame cf;
+    for (int s = 0; s < spec.steps_per_frame; ++s) {
+      const StepReport r = stepper.step(x, v);
+      cf.add(r);
+      if (!r.converged && record.failure.empty())
+        record.failure = fmt::format(
+            "step {} of the frame: SQP stopped after {} iteration(s) with energy violation {:.3e} (tolerance {:.1e}), "
+            "penetration {:.3e} m (tolerance {:.1e}), PGS residual {:.3e} (tolerance {:.1e})",
+            s + 1, r.sqp_iterations, r.energy_violation, spec.step.energy_tolerance, r.penetration,
+            spec.step.contact_tolerance, r.pgs_residual, spec.step.pgs.tolerance);
+    }
+    record.converged = record.failure.empty();
+    record.newton_iterations = cf.sqp_iterations;
+    record.linear_iterations = cf.pgs_iterations;
+    record.residual = std::max(cf.energy_violation, cf.penetration);
+    const Eigen::VectorXd U = element_energies();
+    cf.elastic_energy = U.sum();
+    for (Eigen::Index i = 0; i < mesh.num_vertices(); ++i) cf.kinetic_energy += 0.5 * masses(i) * v.segment<3>(3 * i).squaredNorm();
+    record.energy = cf.elastic_energy;
+    record.volume = 0.0;
+    for (Eigen::Index e = 0; e < disc->num_elements(); ++e) {
+      const Eigen::Matrix3Xd xe = disc->element_positions(e, x);
+      for (int q = 0; q < disc->quadrature_points(); ++q) record.volume += disc->weight(e, q) * (xe * disc->gradients(e, q)).determinant();
+    }
+    record.seconds = std::chrono::duration<double>(Clock::now() - t_frame).count();
+    record.solve_seconds = record.seconds;
+    summary.frames.push_back(record);
+    frames_json.push_back(frame_json(record, cf, frame * spec.steps_per_frame * h));
+    write_frame(frame);
+    write_summary();
+    if (options.progress) options.progress({frame, frames, record.newton_iterations, record.residual, elapsed(), true, &summary.frames.back()});
+    if (!record.converged) break;  // reported, and the state written for inspection
+  }
+  summary.x = x;
+  return summary;
+}
+
+}  // namespace sinew
