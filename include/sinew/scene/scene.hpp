@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sinew/fem/kinematics.hpp"
+#include "sinew/scene/dynamics_spec.hpp"
 #include "sinew/material/spec.hpp"
 #include "sinew/mesh/selection.hpp"
 #include "sinew/mesh/volume_mesh.hpp"
@@ -90,6 +91,8 @@ struct Scene {
   SolverSpec solver;
   int frames = 1;
   OutputSpec output;
+  std::optional<DynamicsSpec> dynamics;  // absent: quasistatic load stepping
+  std::vector<ObstacleSpec> obstacles;
 };
 
 Scene load_scene(const std::filesystem::path& file);
