@@ -1,5 +1,6 @@
 #pragma once
-// Backward Euler as minimisation of the incremental potential (paper 001 §3.1 style):
+// Backward Euler (paper 001 §5 writes its linearised velocity update, Eq. 19) posed as the
+// minimisation of the incremental potential:
 //   E_inertia(x) = 1/(2 h^2) (x - x_pred)^T M (x - x_pred),  x_pred = x_n + h v_n,
 // added to the elastic and external potentials, so that grad = 0 is
 //   M (x - x_n - h v_n) / h^2 = f(x), i.e. M (v_{n+1} - v_n) / h = f(x_{n+1}).
