@@ -1,5 +1,5 @@
-// Time stepping: backward Euler's energy behaviour, a block resting on the ground at the
-// penalty equilibrium depth, and Coulomb friction on a slope (stick below tan(theta), slide
+// Time stepping: backward Euler's energy behaviour, a block and a ball resting on the ground at
+// the penalty equilibrium, and Coulomb friction on a slope (stick below tan(theta), slide
 // above it with the analytic acceleration).
 #include <gtest/gtest.h>
 
@@ -29,8 +29,10 @@ struct Block {
   std::unique_ptr<LinearSolver> linear = make_linear_solver({});
   Eigen::VectorXd x, v, gravity;
 
-  Block(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int cells, double E, double nu, double h, MassKind kind) {
-    disc = std::make_shared<Discretization>(box_lattice(lo, hi, Eigen::Vector3i::Constant(cells)));
+  Block(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int cells, double E, double nu, double h, MassKind kind)
+      : Block(box_lattice(lo, hi, Eigen::Vector3i::Constant(cells)), E, nu, h, kind) {}
+  Block(VolumeMesh mesh, double E, double nu, double h, MassKind kind) {
+    disc = std::make_shared<Discretization>(std::move(mesh));
     const double mu = E / (2 * (1 + nu)), lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
     elastic = std::make_shared<ElasticForm>(disc, std::make_shared<StableNeoHookean>(lambda, mu));
     mass = std::make_shared<MassMatrix>(*disc, kDensity, kind);
@@ -120,6 +122,30 @@ TEST(PenaltyContactDynamics, BlockComesToRestAtPenaltyEquilibriumDepth) {
   EXPECT_NEAR(depth, expected, 0.02 * expected);
   EXPECT_LT(b.mass->kinetic_energy(b.v), 1e-6 * weight * expected);  // at rest
   EXPECT_EQ(b.contact->stats(b.x).contacts, bottom);
+}
+
+TEST(PenaltyContactDynamics, BallComesToRestWherePenaltyForcesCarryItsWeight) {
+  // A ball (a tet-split sphere lattice) dropped from 2 cm settles: at rest the penalty forces
+  // sum_v a_v k max(0, -z_v) of its penetrating vertices carry exactly its weight.
+  const Eigen::Vector3d c(0, 0, 0.12);
+  const SignedDistance sphere = sphere_sdf(c, 0.1);
+  VolumeMesh mesh = tetrahedralize_hexes(occupancy_lattice(Eigen::AlignedBox3d(c.array() - 0.1, c.array() + 0.1),
+                                                           Eigen::Vector3i::Constant(4),
+                                                           [&](const Eigen::Vector3d& p) { return sphere(p) <= 0.0; }));
+  Block b(std::move(mesh), 1e6, 0.4, 0.01, MassKind::Lumped);
+  b.add_gravity(Eigen::Vector3d(0, 0, -9.81));
+  const double k = 1e6;
+  b.add_ground(k, 0.0);
+  b.make_stepper(1e-6);
+  for (int n = 0; n < 150; ++n) b.step(n);
+  const BoundarySurface surface = boundary_surface(b.disc->mesh());
+  const Eigen::VectorXd areas = boundary_vertex_areas(b.disc->mesh(), surface);
+  double support = 0.0;
+  for (int v : surface.vertices) support += areas(v) * k * std::max(0.0, -b.x(3 * v + 2));
+  const double weight = b.mass->lumped().sum() * 9.81;
+  EXPECT_NEAR(support, weight, 0.01 * weight);
+  EXPECT_GT(b.contact->stats(b.x).contacts, 0);
+  EXPECT_LT(b.mass->kinetic_energy(b.v), 1e-4 * weight * 0.01);
 }
 
 // Slides a block down a slope of angle theta (gravity tilted) for 0.5 s; returns the distance.

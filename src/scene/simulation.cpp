@@ -146,9 +146,11 @@ Checkpoint read_checkpoint(const std::filesystem::path& out, const std::string& 
     c.x.resize(dofs);
     for (Eigen::Index i = 0; i < dofs; ++i) c.x(i) = xs[static_cast<size_t>(i)].get<double>();
     if (!c.x.allFinite()) throw Error("checkpoint state is not finite", cp.string());
-    if (j.contains("v")) {
-      c.v = Eigen::Map<const Eigen::VectorXd>(j.at("v").get<std::vector<double>>().data(), dofs);
-      if (j.at("v").size() != xs.size() || !c.v.allFinite()) throw Error("checkpoint velocities are corrupt", cp.string());
+    if (j.contains("v")) {  // dynamics
+      const auto v = j.at("v").get<std::vector<double>>();
+      if (static_cast<Eigen::Index>(v.size()) != dofs) throw Error("checkpoint velocities have the wrong size", cp.string());
+      c.v = Eigen::Map<const Eigen::VectorXd>(v.data(), dofs);
+      if (!c.v.allFinite()) throw Error("checkpoint velocities are not finite", cp.string());
     }
     for (const auto& f : j.at("frames")) c.frames.push_back(frame_from_json(f));
     for (const auto& p : j.at("pvd")) c.pvd.emplace_back(p.at(0).get<double>(), p.at(1).get<std::string>());
