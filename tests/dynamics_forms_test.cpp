@@ -145,6 +145,13 @@ TEST(Obstacles, KeyframedPathMovesQueriesAndPoints) {
   const Eigen::Vector3d moved = Eigen::Vector3d(0.5, 0, 0) + o.displacement(Eigen::Vector3d(0.5, 0, 0), 0.0, 1.0);
   EXPECT_LT((moved - Eigen::Vector3d(0.5 * std::sqrt(0.5), 0.5 * std::sqrt(0.5), 0.5)).norm(), 1e-12);
   EXPECT_TRUE(o.moves());
+  // Velocity (frames of 0.5 s): 0.5 m per frame up and 45 degrees per frame about z.
+  const Eigen::Vector3d w(0, 0, M_PI / 4 / 0.5);  // rad/s
+  const Eigen::Vector3d at = Eigen::Vector3d(1, 0, 0);
+  EXPECT_LT((o.velocity(at, 0.0, 0.5) - (Eigen::Vector3d(0, 0, 1.0) + w.cross(at))).norm(), 1e-5);
+  const Obstacle still("ground", std::make_shared<PlaneObstacle>(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ()));
+  EXPECT_FALSE(still.moves());
+  EXPECT_EQ(still.velocity(at, 3.0, 0.1), Eigen::Vector3d::Zero());
 }
 
 TEST(PenaltyContact, MatchesFiniteDifferencesWithFrictionAndMovingObstacles) {

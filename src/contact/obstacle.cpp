@@ -157,4 +157,9 @@ Eigen::Vector3d Obstacle::displacement(const Eigen::Vector3d& p, double frame0, 
   return T1.apply(T0.R.transpose() * (p - T0.t)) - p;
 }
 
+Eigen::Vector3d Obstacle::velocity(const Eigen::Vector3d& p, double frame, double seconds_per_frame) const {
+  constexpr double kDelta = 1e-6;  // frames
+  return displacement(p, frame, frame + kDelta) / (kDelta * seconds_per_frame);
+}
+
 }  // namespace sinew

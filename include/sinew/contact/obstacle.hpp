@@ -101,6 +101,10 @@ class Obstacle {
   SurfaceQuery query(const Eigen::Vector3d& p, double frame) const;
   // How far the obstacle material point at p (world, at frame0) moves by frame1.
   Eigen::Vector3d displacement(const Eigen::Vector3d& p, double frame0, double frame1) const;
+  // Velocity of the obstacle material point at p (world, at `frame`), frames lasting
+  // `seconds_per_frame`: the forward difference of the path over 1e-6 frame (one-sided, so
+  // the motion after a keyframe counts), exact to ~1e-6 relative for rotations.
+  Eigen::Vector3d velocity(const Eigen::Vector3d& p, double frame, double seconds_per_frame) const;
 
  private:
   std::string name_;
