@@ -13,6 +13,7 @@
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/scene/json_reader.hpp"
 #include "sinew/scene/scene_surface.hpp"
+#include "scene_sections.hpp"
 
 namespace sinew {
 namespace {
@@ -51,6 +52,8 @@ VertexSelector parse_selector(JsonObject o) {
   o.finish();
   return out;
 }
+
+}  // namespace
 
 RigidMotion parse_motion(JsonObject o) {
   o.allow({"type", "per_frame", "center", "axis", "degrees_per_frame", "keys"});
@@ -94,6 +97,8 @@ RigidMotion parse_motion(JsonObject o) {
   o.finish();
   return m;
 }
+
+namespace {
 
 MeshSpec parse_mesh(JsonObject o, const std::filesystem::path& folder) {
   o.allow({"box", "cylinder", "sphere", "voxels", "file", "cells", "cell_size", "resolution", "element", "surface",
@@ -210,7 +215,7 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   const std::string name = file.string();
   JsonObject root(json, name);
   root.allow({"description", "mesh", "material", "density", "boundary", "loads", "solver", "frames", "output",
-              "constraints"});
+              "constraints", "dynamics", "obstacles"});
   Scene scene;
   scene.file = file;
   scene.description = root.string("description", "");
@@ -260,6 +265,7 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
     scene.output.every = o.integer("every", 1, 1);
     o.finish();
   }
+  parse_dynamics_sections(root, scene);  // scene_dynamics.cpp
   root.finish();
   // Build the material once now so parameter problems surface at load time.
   try {

@@ -17,6 +17,7 @@
 #include "sinew/scene/scene_surface.hpp"
 #include "sinew/mesh/surface.hpp"
 #include "sinew/scene/constrained_simulation.hpp"
+#include "sinew/scene/dynamic_model.hpp"
 #include "sinew/solver/newton.hpp"
 
 namespace sinew {
@@ -90,6 +91,10 @@ nlohmann::json to_json(const FrameRecord& r) {
           {"volume", r.volume},
           {"min_J", r.min_J},
           {"reactions", reactions_json(r.reactions)},
+          {"kinetic_energy", r.kinetic_energy},
+          {"potential_energy", r.potential_energy},
+          {"contacts", r.contacts},
+          {"max_penetration", r.max_penetration},
           {"seconds", r.seconds},
           {"assembly_seconds", r.assembly_seconds},
           {"solve_seconds", r.solve_seconds},
@@ -108,6 +113,10 @@ FrameRecord frame_from_json(const nlohmann::json& j) {
   r.volume = j.at("volume");
   r.min_J = j.at("min_J");
   for (const auto& f : j.at("reactions")) r.reactions.emplace_back(f.at(0), f.at(1), f.at(2));
+  r.kinetic_energy = j.value("kinetic_energy", 0.0);
+  r.potential_energy = j.value("potential_energy", 0.0);
+  r.contacts = j.value("contacts", 0);
+  r.max_penetration = j.value("max_penetration", 0.0);
   r.seconds = j.at("seconds");
   r.assembly_seconds = j.at("assembly_seconds");
   r.solve_seconds = j.at("solve_seconds");
@@ -119,6 +128,7 @@ FrameRecord frame_from_json(const nlohmann::json& j) {
 struct Checkpoint {
   int frame = 0;
   Eigen::VectorXd x;
+  Eigen::VectorXd v;  // dynamics only
   std::vector<FrameRecord> frames;
   std::vector<std::pair<double, std::string>> pvd;
 };
@@ -138,6 +148,12 @@ Checkpoint read_checkpoint(const std::filesystem::path& out, const std::string& 
     c.x.resize(dofs);
     for (Eigen::Index i = 0; i < dofs; ++i) c.x(i) = xs[static_cast<size_t>(i)].get<double>();
     if (!c.x.allFinite()) throw Error("checkpoint state is not finite", cp.string());
+    if (j.contains("v")) {  // dynamics
+      const auto v = j.at("v").get<std::vector<double>>();
+      if (static_cast<Eigen::Index>(v.size()) != dofs) throw Error("checkpoint velocities have the wrong size", cp.string());
+      c.v = Eigen::Map<const Eigen::VectorXd>(v.data(), dofs);
+      if (!c.v.allFinite()) throw Error("checkpoint velocities are not finite", cp.string());
+    }
     for (const auto& f : j.at("frames")) c.frames.push_back(frame_from_json(f));
     for (const auto& p : j.at("pvd")) c.pvd.emplace_back(p.at(0).get<double>(), p.at(1).get<std::string>());
     c.frame = j.at("frame").get<int>();
@@ -175,6 +191,7 @@ struct Model {
   Eigen::VectorXd forces;  // constant external nodal forces
   std::vector<KinematicCondition> kinematics;
   std::vector<int> boundary_owner;  // per vertex: the first boundary entry selecting it, or -1
+  DynamicModel dynamic;  // obstacles and dynamics (dynamic_model.hpp)
 };
 
 Model build_model(const Scene& scene) {
@@ -206,6 +223,7 @@ Model build_model(const Scene& scene) {
     }
     m.kinematics.push_back(std::move(c));
   }
+  m.dynamic = build_dynamic_model(scene, m.disc, m.elastic, m.surface, *m.problem, m.kinematics);
   return m;
 }
 
@@ -264,6 +282,10 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   if (options.resume) {
     Checkpoint c = read_checkpoint(out, fingerprint, x.size());
     x = std::move(c.x);
+    if (model.dynamic.dynamic()) {
+      if (c.v.size() != x.size()) throw Error("checkpoint has no velocities (written by a quasistatic run)", (out / "checkpoint.json").string());
+      model.dynamic.v = std::move(c.v);
+    }
     summary.frames = std::move(c.frames);
     pvd_entries = std::move(c.pvd);
     first_frame = c.frame + 1;
@@ -325,6 +347,8 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
     nlohmann::json cp = {{"scene_fingerprint", fingerprint}, {"frame", frame}, {"vertices", summary.vertices},
                          {"frames", frames_json()}, {"pvd", pvd_entries}};
     cp["x"] = std::vector<double>(x.data(), x.data() + x.size());
+    const Eigen::VectorXd& v = model.dynamic.v;
+    if (model.dynamic.dynamic()) cp["v"] = std::vector<double>(v.data(), v.data() + v.size());
     write_file_atomically(out / "checkpoint.json", [&](std::ostream& os) { os << cp.dump() << '\n'; });
   };
 
@@ -345,12 +369,17 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
     const double min_step = 1.0 / (1 << kMaxMotionSplits);
     double solved = frame - 1.0, step = 1.0;
     record.substeps = 0;
+    if (model.dynamic.dynamic()) {
+      advance_dynamic_frame(model.dynamic, scene, x, frame, *linear, record, newton_progress);
+      solved = frame;  // time steps are never split
+    }
     while (solved < frame) {
       const double target = std::min<double>(frame, solved + step);
       Eigen::VectorXd trial = x;
       std::vector<char> fixed(trial.size(), 0);
       apply_kinematics(model.kinematics, mesh.vertices, target, trial, fixed);
       problem.set_fixed(fixed);
+      if (model.dynamic.contact) model.dynamic.contact->begin_step(x, solved, target, 0.0);  // obstacles at `target`
       const NewtonReport r = newton_solve(problem, trial, *linear, scene.solver.newton, newton_progress);
       record.newton_iterations += r.iterations;
       record.linear_iterations += r.linear_iterations;
@@ -384,6 +413,7 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
     record.reactions.assign(model.kinematics.size(), Eigen::Vector3d::Zero());
     for (size_t v = 0; v < model.boundary_owner.size(); ++v)
       if (model.boundary_owner[v] >= 0) record.reactions[model.boundary_owner[v]] += g.segment<3>(3 * v);
+    record_energies(model.dynamic, *model.elastic, model.forces, x, record);
     record.seconds = std::chrono::duration<double>(Clock::now() - t_frame).count();
     summary.frames.push_back(record);
     write_frame(frame);

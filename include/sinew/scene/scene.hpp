@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sinew/fem/kinematics.hpp"
+#include "sinew/scene/dynamics_spec.hpp"
 #include "sinew/material/spec.hpp"
 #include "sinew/mesh/selection.hpp"
 #include "sinew/mesh/volume_mesh.hpp"
@@ -96,6 +97,8 @@ struct Scene {
   int frames = 1;
   OutputSpec output;
   std::optional<ConstraintsSpec> constraints;  // dynamics with paper 001 constraints (docs/energy-limits.md)
+  std::optional<DynamicsSpec> dynamics;  // absent: quasistatic load stepping
+  std::vector<ObstacleSpec> obstacles;
 };
 
 Scene load_scene(const std::filesystem::path& file);

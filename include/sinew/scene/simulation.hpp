@@ -24,6 +24,7 @@ struct FrameRecord {
   int newton_iterations = 0;
   int linear_iterations = 0;
   int substeps = 1;  // converged solves; > 1 when the frame's boundary motion had to be split
+                     // (dynamics: completed time steps)
   double residual = 0.0;
   double energy = 0.0;
   double volume = 0.0;
@@ -31,6 +32,10 @@ struct FrameRecord {
   // Force each boundary condition (scene order) exerts on the body: the measured force of a
   // stretch test; at equilibrium their sum balances the external loads.
   std::vector<Eigen::Vector3d> reactions;
+  // Energies of the frame's state (kinetic is zero in quasistatics) and obstacle contact.
+  double kinetic_energy = 0.0, potential_energy = 0.0;
+  int contacts = 0;               // penetrating (boundary vertex, obstacle) pairs
+  double max_penetration = 0.0;  // deepest penetration into an obstacle
   double seconds = 0.0;
   double assembly_seconds = 0.0;
   double solve_seconds = 0.0;
