@@ -36,7 +36,7 @@ TEST(ConstrainedStepper, FreeFallWithoutConstraintsIsBackwardEuler) {
   ConstrainedStepper stepper(model, masses, f, std::vector<char>(24, 0), {}, s);
   Eigen::VectorXd x = mesh.rest_positions(), v = Eigen::VectorXd::Zero(24);
   for (int k = 1; k <= 5; ++k) {
-    const StepReport r = stepper.step(x, v);
+    const ConstrainedStepReport r = stepper.step(x, v);
     EXPECT_TRUE(r.converged);
     EXPECT_EQ(r.sqp_iterations, 0);
     for (int i = 0; i < 8; ++i) EXPECT_NEAR(v(3 * i + 2), -9.81 * 0.02 * k, 1e-9);

@@ -65,9 +65,9 @@ ConstrainedStepper::ConstrainedStepper(std::shared_ptr<const ElementEnergyModel>
 
 ConstrainedStepper::~ConstrainedStepper() = default;
 
-StepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
+ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
   const auto t_step = Clock::now();
-  StepReport report;
+  ConstrainedStepReport report;
   const double h = settings_.time_step;
   const Discretization& disc = model_->discretization();
   const auto& elements = disc.mesh().elements;

@@ -8,7 +8,7 @@
 
 namespace sinew::paper001 {
 
-void Totals::add(const StepReport& r) {
+void Totals::add(const ConstrainedStepReport& r) {
   ++steps;
   sqp_iterations += r.sqp_iterations;
   pgs_iterations += r.pgs_iterations;
@@ -121,7 +121,7 @@ SphereResult run_falling_sphere(const SphereConfig& c) {
   result.elements = static_cast<int>(mesh.num_elements());
   bool touched = false, left = false;
   for (int s = 0, steps = step_count(c.duration, c.time_step); s < steps; ++s) {
-    const StepReport r = stepper.step(x, v);
+    const ConstrainedStepReport r = stepper.step(x, v);
     result.totals.add(r);
     result.max_penetration = std::max(result.max_penetration, r.penetration);
     const auto [lo, hi] = extent(x);

@@ -24,7 +24,7 @@ struct ConstrainedFrame {
   int active_energy = 0, active_contacts = 0;
   double pgs_residual = 0.0, energy_violation = 0.0, penetration = 0.0, max_element_energy = 0.0;
   double elastic_energy = 0.0, kinetic_energy = 0.0;
-  void add(const StepReport& r) {
+  void add(const ConstrainedStepReport& r) {
     ++steps;
     sqp_iterations += r.sqp_iterations;
     max_sqp_iterations = std::max(max_sqp_iterations, r.sqp_iterations);
@@ -175,7 +175,7 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
     record.frame = frame;
     ConstrainedFrame cf;
     for (int s = 0; s < spec.steps_per_frame; ++s) {
-      const StepReport r = stepper.step(x, v);
+      const ConstrainedStepReport r = stepper.step(x, v);
       cf.add(r);
       if (!r.converged && record.failure.empty())
         record.failure = fmt::format(

@@ -32,7 +32,7 @@ struct ConstrainedStepSettings {
   double contact_tolerance = 1e-4;  // accept penetration up to this depth (m)
 };
 
-struct StepReport {
+struct ConstrainedStepReport {
   bool converged = false;          // SQP met both nonlinear tolerances
   int pgs_unconverged = 0;         // LCP solves that stopped at the PGS iteration cap
   int sqp_iterations = 0;          // LCP solves (0: the unconstrained step already satisfied all)
@@ -56,7 +56,7 @@ class ConstrainedStepper {
   ~ConstrainedStepper();
 
   // Advances (x, v) by one time step.
-  StepReport step(Eigen::VectorXd& x, Eigen::VectorXd& v);
+  ConstrainedStepReport step(Eigen::VectorXd& x, Eigen::VectorXd& v);
 
   const ConstrainedStepSettings& settings() const { return settings_; }
   const ElementEnergyModel& model() const { return *model_; }

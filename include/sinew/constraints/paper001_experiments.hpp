@@ -23,7 +23,7 @@ struct Totals {
   int max_sqp_iterations = 0, max_active_energy = 0, max_active_contacts = 0;
   double seconds = 0.0, max_energy_violation = 0.0, max_element_energy = 0.0;
   double ms_per_step() const { return steps ? 1e3 * seconds / steps : 0.0; }
-  void add(const StepReport& r);
+  void add(const ConstrainedStepReport& r);
 };
 
 struct BeamConfig {
