@@ -128,6 +128,7 @@ ElbowRun run_elbow(const ElbowConfig& c, const std::function<void(const ElbowFra
   MaterialSpec material;
   material.family = c.family;
   material.target = YoungPoisson{c.E, c.nu};
+  material.parameters.values = c.parameters;
   Problem problem(mesh.num_vertices());
   problem.add_form(std::make_shared<ElasticForm>(disc, build_material(material), c.solver.projection));
   SelfContactSettings contact;
@@ -156,7 +157,10 @@ ElbowRun run_elbow(const ElbowConfig& c, const std::function<void(const ElbowFra
   std::vector<int> free_upper, free_fore, far_upper, far_fore;
   for (int s : samples) {
     const double X = mesh.vertices(s, 0);
-    if (binding.bone[s] < 0) (X < kElbowX ? free_upper : free_fore).push_back(s);
+    // Bulges are measured on the bellies, away from the shoulder end, the elbow (whose flesh
+    // swings with the forearm) and the wrist end.
+    if (binding.bone[s] < 0 && X > 0.04 && X < kElbowX - 0.06) free_upper.push_back(s);
+    if (binding.bone[s] < 0 && X > kElbowX + 0.06 && X < kWristX - 0.04) free_fore.push_back(s);
     // Away from the elbow's own flesh, for the biceps-forearm gap.
     if (X < kElbowX - 0.06) far_upper.push_back(s);
     if (X > kElbowX + 0.06) far_fore.push_back(s);

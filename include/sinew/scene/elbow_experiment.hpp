@@ -8,6 +8,7 @@
 // TODO(lead, after merging helper C): voxelise examples/meshes/arm.obj with
 // mesh/voxelize.hpp instead of arm_sdf() and compare the two lattices.
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,7 @@ struct ElbowConfig {
   std::string family = "stable_neo_hookean";
   double E = 1e5;
   double nu = 0.45;
+  std::map<std::string, double> parameters;  // non-normalised material parameters (e.g. kappa)
   double cell_size = 0.0125;
   double bone_radius = 0.016;
   double degrees = 120.0;
@@ -63,7 +65,9 @@ struct ElbowFrame {
   ExperimentFrame solve;  // iterations, volume, timings
   int contacts = 0;       // penetrating samples at the end of the frame
   double max_depth = 0.0;
-  double biceps_bulge = 0.0, forearm_bulge = 0.0;  // max radial growth (m)
+  // Max radial growth (m) of free surface vertices about the bone axis, over the biceps belly
+  // (rest x in [0.04, 0.24]) and the forearm belly (rest x in [0.36, 0.52]).
+  double biceps_bulge = 0.0, forearm_bulge = 0.0;
   double gap = 0.0;  // smallest distance between biceps-side and forearm-side surface samples
 };
 
