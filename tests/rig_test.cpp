@@ -16,6 +16,8 @@
 #include "sinew/rig/bone_spring_form.hpp"
 #include "sinew/rig/rig_reader.hpp"
 #include "sinew/scene/elbow_experiment.hpp"
+#include "sinew/scene/scene.hpp"
+#include "sinew/scene/simulation.hpp"
 #include "sinew/solver/newton.hpp"
 
 namespace sinew {
@@ -192,7 +194,7 @@ TEST(RigReader, RejectsBadFieldsWithFileAndPath) {
 }
 
 TEST(RigReader, ExampleElbowRigMatchesTheExperimentRig) {
-  const Rig file = load_rig(std::filesystem::path(SINEW_EXAMPLES) / "elbow_rig.json");
+  const Rig file = load_rig(std::filesystem::path(SINEW_EXAMPLES) / "rigs" / "elbow_rig.json");
   const Rig code = elbow_rig(12, 120.0);
   ASSERT_EQ(file.bones.size(), code.bones.size());
   for (size_t b = 0; b < code.bones.size(); ++b) {
@@ -237,6 +239,57 @@ TEST(RigSolve, NoisyIntersectingBonesDriveABlockWithoutFailure) {
     EXPECT_TRUE(r.converged) << r.failure;
     EXPECT_TRUE(x.allFinite());
   }
+}
+
+}  // namespace
+}  // namespace sinew
+
+namespace sinew {
+namespace {
+
+// The scene's "rig" and "self_contact" sections: parsed strictly, bound to the mesh, and driven
+// by run_scene.
+TEST(RigScene, InlineRigDrivesARunAndBadSectionsNameThePath) {
+  const auto dir = std::filesystem::temp_directory_path() / "sinew_rig_scene_test";
+  std::filesystem::create_directories(dir);
+  nlohmann::json scene = nlohmann::json::parse(R"({
+    "mesh": {"box": {"min": [0, 0, 0], "max": [1, 0.2, 0.2]}, "cells": [10, 2, 2]},
+    "material": {"family": "stable_neo_hookean", "E": 1e4, "nu": 0.4},
+    "rig": {"bones": [
+      {"name": "left", "capsule": {"a": [0, 0.1, 0.1], "b": [0.2, 0.1, 0.1], "radius": 0.15}, "keys": [{"frame": 0}]},
+      {"name": "right", "capsule": {"a": [0.8, 0.1, 0.1], "b": [1, 0.1, 0.1], "radius": 0.15},
+       "keys": [{"frame": 0}, {"frame": 2, "translation": [0.2, 0, 0]}]}]},
+    "self_contact": {"stiffness": 1e6},
+    "frames": 2
+  })");
+  const auto file = dir / "scene.json";
+  std::ofstream(file) << scene.dump();
+  const Scene s = load_scene(file);
+  ASSERT_TRUE(s.rig);
+  ASSERT_TRUE(s.self_contact);
+  const RunSummary r = run_scene(s, RunOptions{});
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_TRUE(r.all_converged());
+  // The right end moved with its bone: the bar is 1.2 long.
+  EXPECT_NEAR(r.x.reshaped(3, r.x.size() / 3).row(0).maxCoeff(), 1.2, 1e-12);
+
+  auto expect_error = [&](nlohmann::json j, const std::string& needle) {
+    std::ofstream(file) << j.dump();
+    const std::string what = error_of([&] { load_scene(file); });
+    EXPECT_NE(what.find(needle), std::string::npos) << what;
+  };
+  nlohmann::json bad = scene;
+  bad["rig"]["bones"][1]["keys"][1]["translation"] = "far";
+  expect_error(bad, "/rig/bones/1/keys/1/translation");
+  bad = scene;
+  bad["self_contact"]["stiffness"] = -1;
+  expect_error(bad, "/self_contact/stiffness");
+  bad = scene;
+  bad["self_contact"]["samples"] = "faces";
+  expect_error(bad, "/self_contact/samples");
+  bad = scene;
+  bad["rig"] = "missing_rig.json";
+  expect_error(bad, "missing_rig.json");
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "sinew/io/mesh_reader.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/scene/json_reader.hpp"
+#include "sinew/scene/scene_rig.hpp"
 
 namespace sinew {
 namespace {
@@ -205,7 +206,8 @@ SolverSpec parse_solver(JsonObject o) {
 Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file) {
   const std::string name = file.string();
   JsonObject root(json, name);
-  root.allow({"description", "mesh", "material", "density", "boundary", "loads", "solver", "frames", "output"});
+  root.allow({"description", "mesh", "material", "density", "boundary", "loads", "solver", "frames", "output", "rig",
+              "self_contact"});
   Scene scene;
   scene.file = file;
   scene.description = root.string("description", "");
@@ -254,6 +256,7 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
     scene.output.every = o.integer("every", 1, 1);
     o.finish();
   }
+  parse_scene_rig(root, scene);
   root.finish();
   // Build the material once now so parameter problems surface at load time.
   try {

@@ -15,6 +15,7 @@
 #include "sinew/io/obj_writer.hpp"
 #include "sinew/io/vtk_writer.hpp"
 #include "sinew/mesh/surface.hpp"
+#include "sinew/scene/scene_rig.hpp"
 #include "sinew/solver/newton.hpp"
 
 namespace sinew {
@@ -169,6 +170,7 @@ struct Model {
   Eigen::VectorXd forces;  // constant external nodal forces
   std::vector<KinematicCondition> kinematics;
   std::vector<int> boundary_owner;  // per vertex: the first boundary entry selecting it, or -1
+  SceneRig rig;                     // bones and self-contact
 };
 
 Model build_model(const Scene& scene) {
@@ -200,6 +202,7 @@ Model build_model(const Scene& scene) {
     }
     m.kinematics.push_back(std::move(c));
   }
+  m.rig = make_scene_rig(scene, mesh, *m.problem);
   return m;
 }
 
@@ -341,6 +344,7 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
       Eigen::VectorXd trial = x;
       std::vector<char> fixed(trial.size(), 0);
       apply_kinematics(model.kinematics, mesh.vertices, target, trial, fixed);
+      model.rig.apply(target, mesh.vertices, trial, fixed);
       problem.set_fixed(fixed);
       const NewtonReport r = newton_solve(problem, trial, *linear, scene.solver.newton, newton_progress);
       record.newton_iterations += r.iterations;

@@ -3,6 +3,7 @@
 // loads, solver settings, frames and outputs. load_scene validates every field and names the
 // file, JSON path and reason of the first problem.
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -17,6 +18,9 @@
 #include "sinew/solver/newton.hpp"
 
 namespace sinew {
+
+struct Rig;                  // sinew/rig/rig.hpp
+struct SelfContactSettings;  // sinew/contact/self_contact_form.hpp
 
 struct BoxShape {
   Eigen::Vector3d lo, hi;
@@ -90,6 +94,8 @@ struct Scene {
   SolverSpec solver;
   int frames = 1;
   OutputSpec output;
+  std::shared_ptr<const Rig> rig;                           // "rig" (scene_rig.hpp)
+  std::shared_ptr<const SelfContactSettings> self_contact;  // "self_contact" (scene_rig.hpp)
 };
 
 Scene load_scene(const std::filesystem::path& file);
