@@ -214,3 +214,22 @@ TEST(SelfContactSolve, PenaltySeparatesTwoBlocksPushedIntoEachOther) {
 
 }  // namespace
 }  // namespace sinew
+
+namespace sinew {
+namespace {
+
+// No false positives: a curved lattice (a cylinder) at rest and rigidly moved has no contact.
+TEST(SelfContactDetection, NoContactOnARestingOrRigidlyMovedCylinder) {
+  const SignedDistance sdf = cylinder_sdf(Eigen::Vector3d::Zero(), 0.042, 0.3, 0);
+  const VolumeMesh m = occupancy_lattice(Eigen::AlignedBox3d(Eigen::Vector3d(-0.15, -0.042, -0.042), Eigen::Vector3d(0.15, 0.042, 0.042)),
+                                         Eigen::Vector3i(30, 8, 8), [&](const Eigen::Vector3d& p) { return sdf(p) <= 0.0; });
+  const SelfContactForm form(m, SelfContactSettings{});
+  Eigen::VectorXd x = m.rest_positions();
+  EXPECT_EQ(form.detect(x).size(), 0u);
+  const Mat3 R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  for (Eigen::Index v = 0; v < m.num_vertices(); ++v) x.segment<3>(3 * v) = R * x.segment<3>(3 * v) + Eigen::Vector3d(1, 2, 3);
+  EXPECT_EQ(form.detect(x).size(), 0u);
+}
+
+}  // namespace
+}  // namespace sinew

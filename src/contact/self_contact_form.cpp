@@ -83,6 +83,14 @@ SelfContactForm::SelfContactForm(const VolumeMesh& mesh, const SelfContactSettin
   if (settings.refine_iterations < 0) throw Error("refine_iterations must be non-negative", "self_contact");
   tets_ = mesh.kind == ElementKind::Hex8 ? tetrahedralize_hexes(mesh).elements : mesh.elements;
   const BoundarySurface surface = boundary_surface(mesh);
+  sample_ring_.assign(rest_.rows(), {});
+  for (Eigen::Index e = 0; e < mesh.elements.rows(); ++e)
+    for (Eigen::Index a = 0; a < mesh.elements.cols(); ++a)
+      for (Eigen::Index b = 0; b < mesh.elements.cols(); ++b) sample_ring_[mesh.elements(e, a)].push_back(mesh.elements(e, b));
+  for (auto& ring : sample_ring_) {
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  }
   triangles_ = surface.triangles;
   samples_ = surface.vertices;
   area_.assign(rest_.rows(), 0.0);
@@ -228,7 +236,10 @@ std::vector<SurfaceContact> SelfContactForm::detect(const Eigen::VectorXd& x) co
     double depth_in_tet = -1e-10;
     Eigen::Vector4d bary_found;
     for (int t : *candidates) {
-      if ((tets_.row(t).array() == s).any()) continue;  // the sample's own elements
+      const std::vector<int>& ring = sample_ring_[s];
+      bool near = false;
+      for (int k = 0; k < 4 && !near; ++k) near = std::binary_search(ring.begin(), ring.end(), tets_(t, k));
+      if (near) continue;  // the sample's own neighbourhood
       const Eigen::Vector3d p0 = position(x, tets_(t, 0));
       Mat3 M;
       for (int k = 0; k < 3; ++k) M.col(k) = position(x, tets_(t, k + 1)) - p0;

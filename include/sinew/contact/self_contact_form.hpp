@@ -2,8 +2,10 @@
 // Reference-map penalty self-contact (paper 000 §6, after Hirota et al. 2001 and Irving et al.
 // 2004). Every boundary vertex is a surface sample. At the start of each Newton iteration:
 //   1. a uniform spatial grid over the deformed tetrahedra (the Kuhn split of a hexahedral
-//      lattice, or the mesh's own tetrahedra) finds samples inside an element they are not a
-//      node of, i.e. samples that have entered the body;
+//      lattice, or the mesh's own tetrahedra) finds samples inside a tetrahedron that shares no
+//      vertex with the sample's own elements (the excluded neighbourhood: a transiently
+//      inverted element next to a sample is not contact), i.e. samples that have entered the
+//      body elsewhere;
 //   2. the barycentric coordinates in that tetrahedron map the sample to rest space, where the
 //      closest point on the rest boundary (a grid over the rest boundary triangles) is found;
 //   3. that point's barycentric coordinates w in its boundary triangle map it back to deformed
@@ -109,6 +111,7 @@ class SelfContactForm final : public Form {
   std::vector<int> samples_;   // boundary vertices
   std::vector<double> area_;   // rest boundary area per vertex (one third of each triangle)
   std::vector<std::vector<int>> vertex_triangles_;
+  std::vector<std::vector<int>> sample_ring_;  // per vertex: sorted vertices of its elements
   double cell_ = 1.0;
   UniformGrid rest_triangle_grid_;
   Eigen::AlignedBox3d rest_bounds_;
