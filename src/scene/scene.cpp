@@ -14,6 +14,7 @@
 #include "sinew/scene/json_reader.hpp"
 #include "sinew/scene/scene_surface.hpp"
 #include "scene_sections.hpp"
+#include "sinew/scene/scene_rig.hpp"
 
 namespace sinew {
 namespace {
@@ -215,7 +216,7 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   const std::string name = file.string();
   JsonObject root(json, name);
   root.allow({"description", "mesh", "material", "density", "boundary", "loads", "solver", "frames", "output",
-              "constraints", "dynamics", "obstacles"});
+              "constraints", "dynamics", "obstacles", "rig", "self_contact"});
   Scene scene;
   scene.file = file;
   scene.description = root.string("description", "");
@@ -266,6 +267,7 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
     o.finish();
   }
   parse_dynamics_sections(root, scene);  // scene_dynamics.cpp
+  parse_scene_rig(root, scene);
   root.finish();
   // Build the material once now so parameter problems surface at load time.
   try {

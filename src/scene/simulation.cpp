@@ -18,6 +18,7 @@
 #include "sinew/mesh/surface.hpp"
 #include "sinew/scene/constrained_simulation.hpp"
 #include "sinew/scene/dynamic_model.hpp"
+#include "sinew/scene/scene_rig.hpp"
 #include "sinew/solver/newton.hpp"
 
 namespace sinew {
@@ -192,6 +193,7 @@ struct Model {
   std::vector<KinematicCondition> kinematics;
   std::vector<int> boundary_owner;  // per vertex: the first boundary entry selecting it, or -1
   DynamicModel dynamic;  // obstacles and dynamics (dynamic_model.hpp)
+  SceneRig rig;                     // bones and self-contact
 };
 
 Model build_model(const Scene& scene) {
@@ -224,6 +226,7 @@ Model build_model(const Scene& scene) {
     m.kinematics.push_back(std::move(c));
   }
   m.dynamic = build_dynamic_model(scene, m.disc, m.elastic, m.surface, *m.problem, m.kinematics);
+  m.rig = make_scene_rig(scene, mesh, *m.problem);
   return m;
 }
 
@@ -378,6 +381,7 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
       Eigen::VectorXd trial = x;
       std::vector<char> fixed(trial.size(), 0);
       apply_kinematics(model.kinematics, mesh.vertices, target, trial, fixed);
+      model.rig.apply(target, mesh.vertices, trial, fixed);
       problem.set_fixed(fixed);
       if (model.dynamic.contact) model.dynamic.contact->begin_step(x, solved, target, 0.0);  // obstacles at `target`
       const NewtonReport r = newton_solve(problem, trial, *linear, scene.solver.newton, newton_progress);

@@ -43,6 +43,17 @@ bool Problem::is_valid(const Eigen::VectorXd& x) const {
   return true;
 }
 
+bool Problem::refresh(const Eigen::VectorXd& x) {
+  bool changed = false;
+  bool repattern = false;
+  for (const auto& f : forms_) {
+    changed = f->refresh(x) || changed;
+    repattern = repattern || f->couplings_changed();
+  }
+  if (repattern) hessian_.reset();
+  return changed;
+}
+
 void Problem::ensure_pattern() {
   if (hessian_) return;
   std::vector<std::vector<int>> cliques;

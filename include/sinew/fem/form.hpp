@@ -25,6 +25,12 @@ class Form {
   // False where the energy is undefined at x (e.g. an inverted element of a log-based
   // material): the line search treats such a step as infinitely costly.
   virtual bool is_valid(const Eigen::VectorXd& /*x*/) const { return true; }
+  // Lagged state (e.g. self-contact targets) recomputed at x at the start of every Newton
+  // iteration and then frozen for that iteration's value, gradient, Hessian and line search.
+  // Returns true if the energy changed.
+  virtual bool refresh(const Eigen::VectorXd& /*x*/) { return false; }
+  // True if the last refresh changed couplings(): the Hessian pattern is then rebuilt.
+  virtual bool couplings_changed() const { return false; }
 };
 
 }  // namespace sinew

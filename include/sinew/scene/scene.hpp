@@ -3,6 +3,7 @@
 // loads, solver settings, frames and outputs. load_scene validates every field and names the
 // file, JSON path and reason of the first problem.
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -20,6 +21,9 @@
 #include "sinew/solver/newton.hpp"
 
 namespace sinew {
+
+struct Rig;                  // sinew/rig/rig.hpp
+struct SelfContactSettings;  // sinew/contact/self_contact_form.hpp
 
 struct BoxShape {
   Eigen::Vector3d lo, hi;
@@ -99,6 +103,8 @@ struct Scene {
   std::optional<ConstraintsSpec> constraints;  // dynamics with paper 001 constraints (docs/energy-limits.md)
   std::optional<DynamicsSpec> dynamics;  // absent: quasistatic load stepping
   std::vector<ObstacleSpec> obstacles;
+  std::shared_ptr<const Rig> rig;                           // "rig" (scene_rig.hpp)
+  std::shared_ptr<const SelfContactSettings> self_contact;  // "self_contact" (scene_rig.hpp)
 };
 
 Scene load_scene(const std::filesystem::path& file);

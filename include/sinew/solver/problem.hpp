@@ -28,6 +28,8 @@ class Problem {
   // (valid until the next call).
   const LinearOperator& hessian(const Eigen::VectorXd& x);
   bool is_valid(const Eigen::VectorXd& x) const;
+  // Form::refresh on every form; true if any energy changed.
+  bool refresh(const Eigen::VectorXd& x);
 
  private:
   void ensure_pattern();

@@ -1,0 +1,136 @@
+#include "sinew/rig/rig_reader.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <numbers>
+#include <nlohmann/json.hpp>
+
+#include "sinew/core/error.hpp"
+#include "sinew/scene/json_reader.hpp"
+
+namespace sinew {
+namespace {
+
+// {"axis": [...], "degrees": d, "center": [...]}: a rotation about an axis through `center`
+// (default the origin), returned as the rotation and the translation it implies.
+void parse_rotation(JsonObject r, BoneKey& key) {
+  r.allow({"axis", "degrees", "center"});
+  const Eigen::Vector3d axis = r.vec3("axis");
+  if (!(axis.norm() > 0.0)) r.fail("axis", "must be non-zero");
+  const double degrees = r.number("degrees");
+  const Eigen::Vector3d center = r.vec3("center", Eigen::Vector3d::Zero());
+  key.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, axis.normalized()));
+  key.translation += center - key.rotation * center;  // x = R (X - c) + c + t
+  r.finish();
+}
+
+Affine34 parse_matrix(JsonObject& key) {
+  const nlohmann::json& m = key.raw("matrix");
+  const std::string reason = "must be 3 rows of 4 finite numbers (the rows of [A | t])";
+  if (!m.is_array() || m.size() != 3) key.fail("matrix", reason);
+  Affine34 A;
+  for (int r = 0; r < 3; ++r) {
+    if (!m[r].is_array() || m[r].size() != 4) key.fail("matrix", reason);
+    for (int c = 0; c < 4; ++c) {
+      if (!m[r][c].is_number()) key.fail("matrix", reason);
+      A(r, c) = m[r][c].get<double>();
+      if (!std::isfinite(A(r, c))) key.fail("matrix", reason);
+    }
+  }
+  return A;
+}
+
+Bone parse_bone(JsonObject o) {
+  o.allow({"name", "capsule", "mesh", "motion", "keys"});
+  Bone bone;
+  bone.name = o.string("name");
+  if (bone.name.empty()) o.fail("name", "must not be empty");
+  if (o.has("mesh"))
+    o.fail("mesh", "mesh bones need the surface inside test, which this build does not have yet; use a capsule");
+  JsonObject c = o.object("capsule");
+  c.allow({"a", "b", "radius"});
+  bone.shape = std::make_shared<CapsuleShape>(c.vec3("a"), c.vec3("b"), c.positive("radius"));
+  c.finish();
+  const std::string motion = o.choice("motion", {"rigid", "affine"}, "rigid");
+  bone.motion = motion == "rigid" ? BoneMotion::Rigid : BoneMotion::Affine;
+  for (JsonObject key : o.objects("keys")) {
+    BoneKey k;
+    if (bone.motion == BoneMotion::Rigid) {
+      key.allow({"frame", "translation", "rotation", "quaternion"});
+    } else {
+      key.allow({"frame", "matrix"});
+    }
+    k.frame = key.number("frame");
+    if (!bone.keys.empty() && !(k.frame > bone.keys.back().frame))
+      key.fail("frame", fmt::format("must be after the previous keyframe's ({} <= {})", k.frame, bone.keys.back().frame));
+    if (bone.motion == BoneMotion::Rigid) {
+      k.translation = key.vec3("translation", Eigen::Vector3d::Zero());
+      if (key.has("rotation") && key.has("quaternion")) key.fail("quaternion", "give either rotation or quaternion, not both");
+      if (key.has("rotation")) parse_rotation(key.object("rotation"), k);
+      if (key.has("quaternion")) {
+        const nlohmann::json& q = key.raw("quaternion");
+        const std::string reason = "must be 4 finite numbers [w, x, y, z], not all zero";
+        if (!q.is_array() || q.size() != 4) key.fail("quaternion", reason);
+        double wxyz[4];
+        for (int i = 0; i < 4; ++i) {
+          if (!q[i].is_number()) key.fail("quaternion", reason);
+          wxyz[i] = q[i].get<double>();
+          if (!std::isfinite(wxyz[i])) key.fail("quaternion", reason);
+        }
+        k.rotation = Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
+        if (!(k.rotation.norm() > 1e-12)) key.fail("quaternion", reason);
+        k.rotation.normalize();
+      }
+    } else {
+      k.affine = parse_matrix(key);
+    }
+    key.finish();
+    bone.keys.push_back(k);
+  }
+  if (bone.keys.empty()) o.fail("keys", "needs at least one keyframe");
+  o.finish();
+  return bone;
+}
+
+}  // namespace
+
+Rig parse_rig(JsonObject& o) {
+  o.allow({"description", "binding", "spring_stiffness", "bones"});
+  Rig rig;
+  o.string("description", "");
+  const std::string binding = o.choice("binding", {"hard", "springs"}, "hard");
+  rig.binding = binding == "hard" ? BoneBinding::Hard : BoneBinding::Springs;
+  if (rig.binding == BoneBinding::Springs) rig.spring_stiffness = o.positive("spring_stiffness");
+  for (JsonObject b : o.objects("bones")) rig.bones.push_back(parse_bone(b));
+  if (rig.bones.empty()) o.fail("bones", "needs at least one bone");
+  for (size_t i = 0; i < rig.bones.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (rig.bones[i].name == rig.bones[j].name)
+        throw Error(fmt::format("duplicate bone name \"{}\"", rig.bones[i].name), fmt::format("{}: {}/bones/{}/name", o.file(), o.path(), i));
+  o.finish();
+  validate_rig(rig, o.file() + (o.path().empty() ? "" : ": " + o.path()));
+  return rig;
+}
+
+Rig parse_rig(const nlohmann::json& json, const std::filesystem::path& file, const std::string& path) {
+  JsonObject o(json, file.string(), path);
+  return parse_rig(o);
+}
+
+Rig load_rig(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw Error("is a directory, not a rig file", name);
+  std::ifstream in(file);
+  if (!in) throw Error("cannot open rig file (missing or unreadable)", name);
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("malformed JSON: {}", e.what()), name);
+  }
+  return parse_rig(json, file, "");
+}
+
+}  // namespace sinew
