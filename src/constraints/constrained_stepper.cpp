@@ -137,7 +137,7 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
       rows.push_back(std::move(r));
     }
     double penetration = 0.0;
-    const std::vector<ContactCandidate> candidates = contacts_ ? contacts_(x_k) : std::vector<ContactCandidate>{};
+    const std::vector<ContactCandidate> candidates = contacts_ ? contacts_(x_k, time_, time_ + h) : std::vector<ContactCandidate>{};
     for (const ContactCandidate& c : candidates) {
       penetration = std::max(penetration, -c.gap);
       const Eigen::Index base = 3 * static_cast<Eigen::Index>(c.vertex);
@@ -246,6 +246,7 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
   }
   report.lcp_seconds = since(t_lcp);
   x = x0 + h * v;
+  time_ += h;
   report.seconds = since(t_step);
   return report;
 }
