@@ -3,7 +3,7 @@
 // collapsing high-resolution sphere (Fig. 5) and the exact vs warped-force Jacobian comparison
 // of §6.2, printed as tables.
 //
-//   energy_limit_bench [--quick] [--skip-fig5] [--fig5-cells 10] [--repeats 3] [--threads N]
+//   energy_limit_bench [--quick] [--skip-fig5 | --fig5-only] [--fig5-cells 10] [--repeats 3] [--threads N]
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <memory>
@@ -39,23 +39,8 @@ void print_totals(const std::string& name, const Totals& t) {
              t.unconverged_steps);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"paper 001 energy-limiting constraints benchmark"};
-  bool quick = false, skip_fig5 = false;
-  int fig5_cells = 10, threads = 0;
-  app.add_flag("--quick", quick, "shorter simulated durations");
-  app.add_flag("--skip-fig5", skip_fig5, "leave out the high-resolution collapsing sphere");
-  app.add_option("--fig5-cells", fig5_cells, "cells across the high-resolution sphere");
-  app.add_option("--threads", threads, "TBB threads (default: all)");
-  app.add_option("--repeats", repeats, "runs per case; the fastest is reported")->check(CLI::PositiveNumber);
-  CLI11_PARSE(app, argc, argv);
-  std::unique_ptr<tbb::global_control> control;
-  if (threads > 0) control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
-  const double scale = quick ? 0.5 : 1.0;
-
-  // ---- Fig. 3: beam
+// Fig. 3 beam, §6.2 Jacobian comparison and Fig. 4 falling sphere.
+void run_small_cases(double scale) {
   fmt::print("\n== Beam (paper 001 Fig. 3): 56 hexahedra, 1 m x 12 cm x 12 cm, 500 kg/m^3, h = 0.01 s, {:.1f} s ==\n",
              2.0 * scale);
   print_totals_header();
@@ -135,6 +120,26 @@ int main(int argc, char** argv) {
     fmt::print("{:<28} {:>10.1f} % {:>10.3f} m {:>12.1f} {:>12.2e} m\n", name, 100 * r.peak_compression, r.rebound_height,
                r.totals.max_element_energy, r.max_penetration);
 
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"paper 001 energy-limiting constraints benchmark"};
+  bool quick = false, skip_fig5 = false, fig5_only = false;
+  int fig5_cells = 10, threads = 0;
+  app.add_flag("--quick", quick, "shorter simulated durations");
+  app.add_flag("--skip-fig5", skip_fig5, "leave out the high-resolution collapsing sphere");
+  app.add_flag("--fig5-only", fig5_only, "run only the high-resolution collapsing sphere");
+  app.add_option("--fig5-cells", fig5_cells, "cells across the high-resolution sphere");
+  app.add_option("--threads", threads, "TBB threads (default: all)");
+  app.add_option("--repeats", repeats, "runs per case; the fastest is reported")->check(CLI::PositiveNumber);
+  CLI11_PARSE(app, argc, argv);
+  std::unique_ptr<tbb::global_control> control;
+  if (threads > 0) control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+  const double scale = quick ? 0.5 : 1.0;
+
+  if (!fig5_only) run_small_cases(scale);
   // ---- Fig. 5: collapsing high-resolution sphere
   if (!skip_fig5) {
     fmt::print("\n== Collapsing sphere (paper 001 Fig. 5): Y = 50 kPa, {} cells across, h = 0.01 s, {:.1f} s ==\n", fig5_cells,
