@@ -3,7 +3,7 @@
 // collapsing high-resolution sphere (Fig. 5) and the exact vs warped-force Jacobian comparison
 // of §6.2, printed as tables.
 //
-//   energy_limit_bench [--quick] [--skip-fig5] [--fig5-cells 10] [--repeats 3] [--threads N]
+//   energy_limit_bench [--quick] [--skip-fig5 | --fig5-only] [--fig5-cells 10] [--fig5-limits 50 ...] [--repeats 3] [--threads N]
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <memory>
@@ -39,23 +39,8 @@ void print_totals(const std::string& name, const Totals& t) {
              t.unconverged_steps);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"paper 001 energy-limiting constraints benchmark"};
-  bool quick = false, skip_fig5 = false;
-  int fig5_cells = 10, threads = 0;
-  app.add_flag("--quick", quick, "shorter simulated durations");
-  app.add_flag("--skip-fig5", skip_fig5, "leave out the high-resolution collapsing sphere");
-  app.add_option("--fig5-cells", fig5_cells, "cells across the high-resolution sphere");
-  app.add_option("--threads", threads, "TBB threads (default: all)");
-  app.add_option("--repeats", repeats, "runs per case; the fastest is reported")->check(CLI::PositiveNumber);
-  CLI11_PARSE(app, argc, argv);
-  std::unique_ptr<tbb::global_control> control;
-  if (threads > 0) control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
-  const double scale = quick ? 0.5 : 1.0;
-
-  // ---- Fig. 3: beam
+// Fig. 3 beam, §6.2 Jacobian comparison and Fig. 4 falling sphere.
+void run_small_cases(double scale) {
   fmt::print("\n== Beam (paper 001 Fig. 3): 56 hexahedra, 1 m x 12 cm x 12 cm, 500 kg/m^3, h = 0.01 s, {:.1f} s ==\n",
              2.0 * scale);
   print_totals_header();
@@ -135,19 +120,44 @@ int main(int argc, char** argv) {
     fmt::print("{:<28} {:>10.1f} % {:>10.3f} m {:>12.1f} {:>12.2e} m\n", name, 100 * r.peak_compression, r.rebound_height,
                r.totals.max_element_energy, r.max_penetration);
 
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"paper 001 energy-limiting constraints benchmark"};
+  bool quick = false, skip_fig5 = false, fig5_only = false;
+  int fig5_cells = 10, threads = 0;
+  std::vector<double> fig5_limits = {50.0};
+  app.add_flag("--quick", quick, "shorter simulated durations");
+  app.add_flag("--skip-fig5", skip_fig5, "leave out the high-resolution collapsing sphere");
+  app.add_flag("--fig5-only", fig5_only, "run only the high-resolution collapsing sphere");
+  app.add_option("--fig5-cells", fig5_cells, "cells across the high-resolution sphere");
+  app.add_option("--fig5-limits", fig5_limits, "energy limits (J) of the high-resolution sphere runs (paper: 50)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--threads", threads, "TBB threads (default: all)");
+  app.add_option("--repeats", repeats, "runs per case; the fastest is reported")->check(CLI::PositiveNumber);
+  CLI11_PARSE(app, argc, argv);
+  std::unique_ptr<tbb::global_control> control;
+  if (threads > 0) control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+  const double scale = quick ? 0.5 : 1.0;
+
+  if (!fig5_only) run_small_cases(scale);
   // ---- Fig. 5: collapsing high-resolution sphere
   if (!skip_fig5) {
     fmt::print("\n== Collapsing sphere (paper 001 Fig. 5): Y = 50 kPa, {} cells across, h = 0.01 s, {:.1f} s ==\n", fig5_cells,
                2.0 * scale);
     print_totals_header();
-    for (const std::optional<double> limit : {std::optional<double>{}, std::optional<double>{50.0}}) {
+    std::vector<std::optional<double>> limits = {std::nullopt};
+    limits.insert(limits.end(), fig5_limits.begin(), fig5_limits.end());
+    for (const std::optional<double>& limit : limits) {
       SphereConfig config;
       config.young = 50e3;
       config.cells = fig5_cells;
       config.max_energy = limit;
       config.duration = 2.0 * scale;
       const SphereResult r = run_falling_sphere(config);
-      print_totals(fmt::format("{} hexes, {}", r.elements, limit ? "U_e<=50 J" : "linear"), r.totals);
+      print_totals(fmt::format("{} hexes, {}", r.elements, limit ? fmt::format("U_e<={:g} J", *limit) : "linear"), r.totals);
       fmt::print("    peak compression {:.1f} %, rebound {:.3f} m, max U_e {:.2f} J, max penetration {:.2e} m\n",
                  100 * r.peak_compression, r.rebound_height, r.totals.max_element_energy, r.max_penetration);
     }

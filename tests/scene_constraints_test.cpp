@@ -23,7 +23,8 @@ json beam_scene() {
     "density": 500,
     "boundary": [{"name": "wall", "select": {"plane": {"point": [0, 0, 0], "normal": [-1, 0, 0]}}}],
     "loads": {"gravity": [0, 0, -9.81]},
-    "constraints": {"time_step": 0.01, "steps_per_frame": 2, "energy_limit": {"max_energy": 0.002}},
+    "dynamics": {"time_step": 0.02, "substeps": 2},
+    "constraints": {"energy_limit": {"max_energy": 0.002}},
     "frames": 3
   })");
 }
@@ -43,12 +44,11 @@ TEST(SceneConstraints, DefaultsAndValues) {
   ASSERT_TRUE(s.constraints.has_value());
   const ConstraintsSpec& c = *s.constraints;
   EXPECT_EQ(c.model, "corotational");
-  EXPECT_EQ(c.steps_per_frame, 2);
-  EXPECT_EQ(c.step.time_step, 0.01);
+  EXPECT_EQ(c.step.time_step, 0.01);  // dynamics.time_step / substeps
   ASSERT_TRUE(c.step.energy_limit.has_value());
   EXPECT_EQ(c.step.energy_limit->max_energy, 0.002);
   EXPECT_EQ(c.step.energy_limit->jacobian, JacobianKind::Exact);
-  EXPECT_FALSE(c.ground.has_value());
+  EXPECT_EQ(c.contact_margin, 0.01);
   EXPECT_FALSE(parse_scene(patched({{"constraints", nullptr}}), "s.json").constraints.has_value());
 }
 
@@ -63,18 +63,83 @@ TEST(SceneConstraints, BadInputIsRejectedWithFileAndPath) {
                   {"/constraints/energy_limit/jacobian"});
   expect_contains(parse_error(patched({{"constraints", {{"model", "material"}, {"energy_limit", {{"jacobian", "warped"}}}}}})),
                   {"/constraints/energy_limit/jacobian", "corotational"});
-  expect_contains(parse_error(patched({{"constraints", {{"time_step", 0}}}})), {"/constraints/time_step"});
-  expect_contains(parse_error(patched({{"constraints", {{"steps_per_frame", 0}}}})), {"/constraints/steps_per_frame"});
-  expect_contains(parse_error(patched({{"constraints", {{"contact", {{"friction", 0.5}}}}}})),
-                  {"/constraints/contact/ground", "missing"});
-  expect_contains(parse_error(patched({{"constraints", {{"contact", {{"ground", json::object()}, {"friction", -0.5}}}}}})),
-                  {"/constraints/contact/friction", "non-negative"});
-  expect_contains(parse_error(patched({{"constraints", {{"contact", {{"ground", {{"normal", {0, 0, 0}}}}}}}}})),
-                  {"/constraints/contact/ground/normal", "non-zero"});
+  expect_contains(parse_error(patched({{"constraints", {{"contact", {{"margin", -0.1}}}}}})),
+                  {"/constraints/contact/margin", "non-negative"});
+  expect_contains(parse_error(patched({{"constraints", {{"contact", {{"tolerance", 0}}}}}})),
+                  {"/constraints/contact/tolerance", "positive"});
   expect_contains(parse_error(patched({{"constraints", {{"pgs", {{"iterations", 0}}}}}})), {"/constraints/pgs/iterations"});
   expect_contains(parse_error(patched({{"constraints", {{"sqp", {{"tolerance", 1}}}}}})), {"/constraints/sqp/tolerance"});
   expect_contains(parse_error(patched({{"constraints", {{"energy_limit", {{"activation", 2}}}}}})),
                   {"/constraints/energy_limit/activation", "[0, 1]"});
+}
+
+TEST(SceneConstraints, OneConfigFormatTimeSteppingFromDynamicsContactFromObstacles) {
+  // Keys that moved out of `constraints` name their new place.
+  expect_contains(parse_error(patched({{"constraints", {{"time_step", 0.01}}}})),
+                  {"dir/scene.json: /constraints/time_step", "dynamics.time_step"});
+  expect_contains(parse_error(patched({{"constraints", {{"steps_per_frame", 2}}}})),
+                  {"/constraints/steps_per_frame", "dynamics.substeps"});
+  expect_contains(parse_error(patched({{"constraints", {{"initial_velocity", {0, 0, 1}}}}})),
+                  {"/constraints/initial_velocity", "dynamics.initial_velocity"});
+  expect_contains(parse_error(patched({{"constraints", {{"contact", {{"ground", json::object()}}}}}})),
+                  {"/constraints/contact/ground", "obstacles", "plane"});
+  expect_contains(parse_error(patched({{"constraints", {{"contact", {{"friction", 0.5}}}}}})),
+                  {"/constraints/contact/friction", "obstacle"});
+  // A constrained scene needs `dynamics`, and only what its stepper does.
+  expect_contains(parse_error(patched({{"dynamics", nullptr}})), {"dir/scene.json: /constraints", "dynamics"});
+  expect_contains(parse_error(patched({{"dynamics", {{"integrator", "semi_implicit"}}}})),
+                  {"dir/scene.json: /dynamics/integrator", "backward_euler"});
+  expect_contains(parse_error(patched({{"dynamics", {{"mass", "consistent"}}}})), {"/dynamics/mass", "lumped"});
+  expect_contains(parse_error(patched({{"dynamics", {{"rayleigh", {{"alpha", 1}}}}}})), {"/dynamics/rayleigh"});
+  expect_contains(parse_error(patched({{"dynamics", {{"friction_velocity", 0.1}}}})), {"/dynamics/friction_velocity", "penalty"});
+  const json ground = {{"type", "plane"}, {"point", {0, 0, -0.2}}, {"normal", {0, 0, 1}}, {"friction", 0.3}};
+  json with_stiffness = ground;
+  with_stiffness["stiffness"] = 1e6;
+  expect_contains(parse_error(patched({{"obstacles", {ground, with_stiffness}}})), {"/obstacles/1/stiffness", "penalty"});
+  // Accepted: explicit backward Euler and lumped mass, obstacles without stiffness.
+  const Scene s = parse_scene(
+      patched({{"dynamics", {{"time_step", 0.03}, {"substeps", 3}, {"integrator", "backward_euler"}, {"mass", "lumped"},
+                             {"initial_velocity", {1, 0, 0}}}},
+               {"obstacles", {ground}}}),
+      "dir/scene.json");
+  EXPECT_DOUBLE_EQ(s.constraints->step.time_step, 0.01);
+  ASSERT_EQ(s.obstacles.size(), 1u);
+  EXPECT_EQ(s.obstacles[0].contact.friction, 0.3);
+}
+
+TEST(SceneConstraints, ObstaclesStopTheConstrainedBody) {
+  // The free end of the cantilever (initially moving down at 1 m/s) lands on a static box obstacle
+  // 3 cm below it, and a rising keyframed sphere pushes its middle; neither is penetrated.
+  test::TempDir dir;
+  const auto file = dir.path() / "scene.json";
+  json j = beam_scene();
+  j.erase("constraints");
+  j["constraints"] = {{"contact", {{"margin", 0.02}, {"tolerance", 1e-4}}}};
+  j["dynamics"] = {{"time_step", 0.02}, {"substeps", 2}, {"initial_velocity", {0, 0, -1}}};
+  j["obstacles"] = json::parse(R"([
+    {"name": "shelf", "type": "box", "min": [0.3, -0.2, -0.3], "max": [0.5, 0.2, -0.08], "friction": 0.5},
+    {"name": "pusher", "type": "sphere", "center": [0.2, 0, -0.25], "radius": 0.1, "friction": 0.2,
+     "motion": {"type": "keyframes", "keys": [{"frame": 0}, {"frame": 10, "translation": [0, 0, 0.1]}]}}
+  ])");
+  j["frames"] = 12;
+  std::ofstream(file) << j.dump();
+  RunOptions options;
+  options.out_dir = dir.path() / "out";
+  const RunSummary summary = run_scene(load_scene(file), options);
+  EXPECT_TRUE(summary.all_converged());
+  const json s = json::parse(std::ifstream(options.out_dir / "summary.json"));
+  int contacts = 0;
+  for (const auto& f : s["frames"]) {
+    EXPECT_LE(f["max_penetration"].get<double>(), 1e-4);
+    contacts = std::max(contacts, f["max_active_contacts"].get<int>());
+  }
+  EXPECT_GT(contacts, 0);
+  // Independently: no vertex of the final state is inside the shelf.
+  for (Eigen::Index v = 0; v < summary.x.size() / 3; ++v) {
+    const Eigen::Vector3d p = summary.x.segment<3>(3 * v);
+    const bool inside = p.x() > 0.3 + 1e-4 && p.x() < 0.5 - 1e-4 && std::abs(p.y()) < 0.2 - 1e-4 && p.z() < -0.08 - 1e-4;
+    EXPECT_FALSE(inside) << "vertex " << v << " at " << p.transpose();
+  }
 }
 
 TEST(SceneConstraints, RunWritesPerFrameSolverFiguresAndHoldsTheLimit) {

@@ -137,7 +137,7 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
       rows.push_back(std::move(r));
     }
     double penetration = 0.0;
-    const std::vector<ContactCandidate> candidates = contacts_ ? contacts_(x_k) : std::vector<ContactCandidate>{};
+    const std::vector<ContactCandidate> candidates = contacts_ ? contacts_(x_k, time_, time_ + h) : std::vector<ContactCandidate>{};
     for (const ContactCandidate& c : candidates) {
       penetration = std::max(penetration, -c.gap);
       const Eigen::Index base = 3 * static_cast<Eigen::Index>(c.vertex);
@@ -210,20 +210,23 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
 
     // ---- LCP (Eq. 23): W = J H^-1 J^T with the columns H^-1 J^T from the one factorisation
     const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
-    Eigen::MatrixXd Jt = Eigen::MatrixXd::Zero(n, m);
     Eigen::VectorXd q(m), lambda(m);
     std::vector<LcpRow> bounds(m);
+    std::vector<Eigen::Triplet<double>> entries;
     for (Eigen::Index i = 0; i < m; ++i) {
-      for (const auto& [dof, value] : rows[i].jacobian) Jt(dof, i) += value;
+      for (const auto& [dof, value] : rows[i].jacobian) entries.emplace_back(i, dof, value);
       q(i) = rows[i].offset - row_dot(rows[i], d0);
       bounds[i] = rows[i].bounds;
       const auto w = warm.find(rows[i].key);
       lambda(i) = w == warm.end() ? 0.0 : w->second;
     }
-    const Eigen::MatrixXd Y = solver->solve(Jt);  // H^-1 J^T
-    Eigen::MatrixXd W(m, m);
-    for (Eigen::Index i = 0; i < m; ++i)
-      for (Eigen::Index j = 0; j < m; ++j) W(i, j) = row_dot(rows[i], Y.col(j));
+    Eigen::SparseMatrix<double, Eigen::RowMajor> J(m, n);
+    J.setFromTriplets(entries.begin(), entries.end());
+    const Eigen::MatrixXd Jt = Eigen::MatrixXd(J.transpose());
+    const Eigen::MatrixXd Y = solver->solve(Jt);  // H^-1 J^T: one multi-RHS solve
+    // W = J Y as a sparse-times-dense product: each row of J has at most 24 entries, so this is
+    // O(nnz(J) m) with contiguous access to Y's rows' columns, not m^2 scattered row dots.
+    Eigen::MatrixXd W = J * Y;
     for (Eigen::Index i = 0; i < m; ++i) W(i, i) = std::max(W(i, i), 1e-14 * W.diagonal().cwiseAbs().maxCoeff());
     const PgsReport pgs = solve_pgs(W, q, bounds, lambda, settings_.pgs);
     report.sqp_iterations = k + 1;
@@ -246,6 +249,7 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
   }
   report.lcp_seconds = since(t_lcp);
   x = x0 + h * v;
+  time_ += h;
   report.seconds = since(t_step);
   return report;
 }

@@ -6,6 +6,7 @@
 
 #include "sinew/constraints/corotational_hex.hpp"
 #include "sinew/constraints/hyperelastic_energy_model.hpp"
+#include "sinew/constraints/obstacle_contacts.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/fem/mass.hpp"
 #include "sinew/io/atomic_file.hpp"
@@ -65,6 +66,8 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
   const auto t_start = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t_start).count(); };
   const ConstraintsSpec& spec = *scene.constraints;
+  const DynamicsSpec& dynamics = *scene.dynamics;  // the scene reader requires it with `constraints`
+  const int steps_per_frame = dynamics.substeps;
   const std::string file = scene.file.string();
   const int frames = options.frames.value_or(scene.frames);
   if (frames < 1) throw Error(fmt::format("must be at least 1, got {}", frames), "--frames");
@@ -97,7 +100,12 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
       fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = 1;
   }
   ContactProvider contacts;
-  if (spec.ground) contacts = ground_plane_contacts(spec.ground->normal, spec.ground->offset, spec.friction, spec.ground->margin);
+  if (!scene.obstacles.empty()) {
+    std::vector<ObstacleContact> obstacles;
+    for (const ObstacleSpec& o : scene.obstacles)
+      obstacles.push_back({std::make_shared<Obstacle>(o.name, o.shape, o.motion), o.contact.friction});
+    contacts = obstacle_contacts(std::move(obstacles), surface.vertices, spec.contact_margin, dynamics.time_step);
+  }
   ConstrainedStepper stepper(model, masses, forces, fixed, contacts, spec.step);
 
   RunSummary summary;
@@ -107,7 +115,7 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
   summary.external_force = forces.reshaped(3, forces.size() / 3).rowwise().sum();
   Eigen::VectorXd x = mesh.rest_positions(), v = Eigen::VectorXd::Zero(x.size());
   for (Eigen::Index i = 0; i < mesh.num_vertices(); ++i)
-    if (!fixed[3 * i]) v.segment<3>(3 * i) = spec.initial_velocity;
+    if (!fixed[3 * i]) v.segment<3>(3 * i) = dynamics.initial_velocity;
 
   // ---- outputs
   const bool writing = !options.out_dir.empty();
@@ -132,7 +140,7 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
       fields.point_vectors = {{"velocity", v}};
       const std::string name = fmt::format("frame_{:04d}.vtu", frame);
       write_vtu(out / name, mesh, x, fields);
-      pvd.emplace_back(frame * spec.steps_per_frame * h, name);
+      pvd.emplace_back(frame * steps_per_frame * h, name);
       write_pvd(out / "simulation.pvd", pvd);
     }
     if (scene.output.obj) write_surface_obj(out / fmt::format("surface_{:04d}.obj", frame), mesh, surface, x);
@@ -154,7 +162,7 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
                         {"density", scene.density},
                         {"rest_volume", summary.rest_volume},
                         {"time_step", h},
-                        {"steps_per_frame", spec.steps_per_frame},
+                        {"steps_per_frame", steps_per_frame},
                         {"energy_limit", spec.step.energy_limit ? nlohmann::json(spec.step.energy_limit->max_energy) : nlohmann::json()},
                         {"jacobian", spec.step.energy_limit ? to_string(spec.step.energy_limit->jacobian) : "none"},
                         {"frames_requested", frames},
@@ -174,7 +182,7 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
     FrameRecord record;
     record.frame = frame;
     ConstrainedFrame cf;
-    for (int s = 0; s < spec.steps_per_frame; ++s) {
+    for (int s = 0; s < steps_per_frame; ++s) {
       const ConstrainedStepReport r = stepper.step(x, v);
       cf.add(r);
       if (!r.converged && record.failure.empty())
@@ -200,7 +208,7 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
     record.seconds = std::chrono::duration<double>(Clock::now() - t_frame).count();
     record.solve_seconds = record.seconds;
     summary.frames.push_back(record);
-    frames_json.push_back(frame_json(record, cf, frame * spec.steps_per_frame * h));
+    frames_json.push_back(frame_json(record, cf, frame * steps_per_frame * h));
     write_frame(frame);
     write_summary();
     if (options.progress) options.progress({frame, frames, record.newton_iterations, record.residual, elapsed(), true, &summary.frames.back()});

@@ -7,12 +7,15 @@
 namespace sinew {
 
 ConstraintsSpec parse_constraints(JsonObject o) {
-  o.allow({"model", "time_step", "steps_per_frame", "initial_velocity", "energy_limit", "contact", "pgs", "sqp"});
+  // One way to say each thing: time stepping lives in `dynamics`, contact geometry in `obstacles`.
+  const std::pair<const char*, const char*> moved[] = {{"time_step", "dynamics.time_step (seconds per frame)"},
+                                                       {"steps_per_frame", "dynamics.substeps"},
+                                                       {"initial_velocity", "dynamics.initial_velocity"}};
+  for (const auto& [key, where] : moved)
+    if (o.has(key)) o.fail(key, fmt::format("not a constraints setting: use {}", where));
+  o.allow({"model", "energy_limit", "contact", "pgs", "sqp"});
   ConstraintsSpec spec;
   spec.model = o.choice("model", {"corotational", "material"}, "corotational");
-  spec.step.time_step = o.positive("time_step", 0.01);
-  spec.steps_per_frame = o.integer("steps_per_frame", 1, 1);
-  spec.initial_velocity = o.vec3("initial_velocity", Eigen::Vector3d::Zero());
   if (o.has("energy_limit")) {
     JsonObject e = o.object("energy_limit");
     e.allow({"max_energy", "jacobian", "activation", "tolerance"});
@@ -30,20 +33,11 @@ ConstraintsSpec parse_constraints(JsonObject o) {
   }
   if (o.has("contact")) {
     JsonObject c = o.object("contact");
-    c.allow({"ground", "friction", "tolerance"});
-    JsonObject g = c.object("ground");
-    g.allow({"normal", "offset", "margin"});
-    GroundSpec ground;
-    ground.normal = g.vec3("normal", ground.normal);
-    if (!(ground.normal.norm() > 1e-12)) g.fail("normal", "must be a non-zero vector");
-    ground.normal.normalize();
-    ground.offset = g.number("offset", 0.0);
-    ground.margin = g.number("margin", ground.margin);
-    if (!(ground.margin >= 0.0)) g.fail("margin", fmt::format("must be non-negative, got {}", ground.margin));
-    g.finish();
-    spec.ground = ground;
-    spec.friction = c.number("friction", 0.0);
-    if (!(spec.friction >= 0.0)) c.fail("friction", fmt::format("must be non-negative, got {}", spec.friction));
+    if (c.has("ground")) c.fail("ground", "contact geometry lives in `obstacles`: use an obstacle of type \"plane\"");
+    if (c.has("friction")) c.fail("friction", "friction is per obstacle: use the obstacle's `friction`");
+    c.allow({"margin", "tolerance"});
+    spec.contact_margin = c.number("margin", spec.contact_margin);
+    if (!(spec.contact_margin >= 0.0)) c.fail("margin", fmt::format("must be non-negative, got {}", spec.contact_margin));
     spec.step.contact_tolerance = c.positive("tolerance", spec.step.contact_tolerance);
     c.finish();
   }

@@ -9,7 +9,18 @@ namespace {
 
 constexpr int kMaxSubsteps = 100000;
 
-DynamicsSpec parse_dynamics(JsonObject o) {
+// `constrained`: the scene has a `constraints` section, whose stepper (paper 001 §5) is one
+// linearised backward-Euler step with lumped mass, no damping and friction as constraints.
+DynamicsSpec parse_dynamics(JsonObject o, bool constrained) {
+  if (constrained) {
+    if (o.has("integrator") && o.string("integrator", "") != "backward_euler")
+      o.fail("integrator", "a scene with `constraints` is integrated by paper 001's linearised backward Euler; only \"backward_euler\" applies");
+    if (o.has("mass") && o.string("mass", "") != "lumped")
+      o.fail("mass", "the constrained stepper uses the lumped mass; only \"lumped\" applies with `constraints`");
+    if (o.has("rayleigh")) o.fail("rayleigh", "Rayleigh damping is not available with `constraints`");
+    if (o.has("friction_velocity"))
+      o.fail("friction_velocity", "penalty-contact setting; constraint contact has exact Coulomb stick (no slip threshold)");
+  }
   o.allow({"time_step", "substeps", "integrator", "mass", "rayleigh", "initial_velocity", "friction_velocity"});
   DynamicsSpec d;
   d.time_step = o.positive("time_step");
@@ -71,13 +82,19 @@ std::shared_ptr<const ObstacleShape> parse_shape(JsonObject& o, const std::strin
   return std::make_shared<BoxObstacle>(lo, hi);
 }
 
-ObstacleSpec parse_obstacle(JsonObject o, bool dynamic) {
+ObstacleSpec parse_obstacle(JsonObject o, bool dynamic, bool constrained) {
   if (!o.has("type")) o.fail("type", "missing (one of: plane, sphere, capsule, cylinder, box)");
   const std::string type = o.choice("type", {"plane", "sphere", "capsule", "cylinder", "box"}, "");
   ObstacleSpec s;
   s.shape = parse_shape(o, type);
   s.name = o.string("name", o.path());
-  s.contact.stiffness = o.positive("stiffness");
+  if (constrained) {
+    // Constraint contact (paper 001 §5) has no penalty: the gap is held >= 0 within the tolerance.
+    if (o.has("stiffness"))
+      o.fail("stiffness", "penalty-contact setting; with `constraints` contact is a constraint (see constraints.contact)");
+  } else {
+    s.contact.stiffness = o.positive("stiffness");
+  }
   s.contact.friction = o.number("friction", 0.0);
   if (s.contact.friction < 0.0) o.fail("friction", fmt::format("must be >= 0, got {}", s.contact.friction));
   if (s.contact.friction > 0.0 && !dynamic)
@@ -90,9 +107,16 @@ ObstacleSpec parse_obstacle(JsonObject o, bool dynamic) {
 }  // namespace
 
 void parse_dynamics_sections(JsonObject& root, Scene& scene) {
-  if (root.has("dynamics")) scene.dynamics = parse_dynamics(root.object("dynamics"));
+  const bool constrained = scene.constraints.has_value();
+  if (root.has("dynamics")) scene.dynamics = parse_dynamics(root.object("dynamics"), constrained);
+  if (constrained) {
+    if (!scene.dynamics)
+      root.fail("constraints", "needs a `dynamics` section (time_step, substeps, initial_velocity of the constrained steps)");
+    scene.constraints->step.time_step = scene.dynamics->time_step / scene.dynamics->substeps;
+  }
   if (root.has("obstacles"))
-    for (JsonObject o : root.objects("obstacles")) scene.obstacles.push_back(parse_obstacle(o, scene.dynamics.has_value()));
+    for (JsonObject o : root.objects("obstacles"))
+      scene.obstacles.push_back(parse_obstacle(o, scene.dynamics.has_value(), constrained));
 }
 
 }  // namespace sinew

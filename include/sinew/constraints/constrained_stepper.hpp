@@ -55,8 +55,12 @@ class ConstrainedStepper {
                      ConstrainedStepSettings settings);
   ~ConstrainedStepper();
 
-  // Advances (x, v) by one time step.
+  // Advances (x, v) by one time step, from time() to time() + time_step.
   ConstrainedStepReport step(Eigen::VectorXd& x, Eigen::VectorXd& v);
+
+  // Simulated time (s) at the start of the next step; moving obstacles are evaluated from it.
+  double time() const { return time_; }
+  void set_time(double seconds) { time_ = seconds; }
 
   const ConstrainedStepSettings& settings() const { return settings_; }
   const ElementEnergyModel& model() const { return *model_; }
@@ -69,6 +73,7 @@ class ConstrainedStepper {
   ContactProvider contacts_;
   ConstrainedStepSettings settings_;
   std::unique_ptr<Factorization> factor_;
+  double time_ = 0.0;
 };
 
 }  // namespace sinew

@@ -15,8 +15,11 @@ struct ContactCandidate {
   Eigen::Vector3d obstacle_velocity = Eigen::Vector3d::Zero();  // for the relative sliding velocity
 };
 
-// Candidates at positions x (x[3 v + i]).
-using ContactProvider = std::function<std::vector<ContactCandidate>(const Eigen::VectorXd& x)>;
+// Candidates at positions x (x[3 v + i]) at the end of the step [step_start, step_end]
+// (seconds since the simulation started): moving obstacles are placed at step_end, and their
+// velocity over the step goes into the friction rows.
+using ContactProvider =
+    std::function<std::vector<ContactCandidate>(const Eigen::VectorXd& x, double step_start, double step_end)>;
 
 // A static infinite ground plane {p : normal . p = offset}: every vertex closer than `margin`
 // (or penetrating) is a candidate. For experiments; general obstacles come from elsewhere.

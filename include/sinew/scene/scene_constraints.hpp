@@ -11,23 +11,16 @@ namespace sinew {
 
 class JsonObject;
 
-struct GroundSpec {
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
-  double offset = 0.0;   // plane {p : n . p = offset}
-  double margin = 0.01;  // vertices closer than this become contact candidates (m)
-};
-
+// Only what is specific to paper 001: the time step, substeps and initial velocity come from the
+// scene's `dynamics` section and the contact geometry and friction from its `obstacles`.
 struct ConstraintsSpec {
   std::string model = "corotational";  // "corotational" (paper 001 §3) | "material" (the scene's material)
-  int steps_per_frame = 1;
-  Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();
-  std::optional<GroundSpec> ground;
-  double friction = 0.0;
-  ConstrainedStepSettings step;  // time step, energy limit, PGS and SQP settings
+  double contact_margin = 0.01;  // boundary vertices closer than this to an obstacle become candidates (m)
+  ConstrainedStepSettings step;  // energy limit, PGS and SQP settings; time_step = dynamics h
 };
 
 // Strict reader: unknown keys, wrong types, non-finite or out-of-range numbers are sinew::Errors
-// naming the file and JSON path.
+// naming the file and JSON path. Keys that moved to `dynamics` / `obstacles` say where.
 ConstraintsSpec parse_constraints(JsonObject object);
 
 }  // namespace sinew
