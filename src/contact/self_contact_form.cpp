@@ -275,10 +275,11 @@ std::vector<SurfaceContact> SelfContactForm::detect(const Eigen::VectorXd& x) co
   return out;
 }
 
-bool SelfContactForm::refresh(const Eigen::VectorXd& x) {
+bool SelfContactForm::begin_solve(const Eigen::VectorXd& x) {
   std::vector<SurfaceContact> next = detect(x);
   const Eigen::MatrixX3d normals = vertex_normals(x);
-  // Hysteresis: keep last iteration's contacts whose sample is not inside now but still close.
+  // Hysteresis: keep the last solve's contacts whose sample is not inside now but still close,
+  // so a sample resting on the surface stays in the energy from one solve to the next.
   std::vector<char> found(rest_.rows(), 0);
   for (const auto& c : next) found[c.sample] = 1;
   for (SurfaceContact c : contacts_) {
@@ -300,6 +301,23 @@ bool SelfContactForm::refresh(const Eigen::VectorXd& x) {
                        });
   contacts_ = std::move(next);
   return had || !contacts_.empty();
+}
+
+bool SelfContactForm::refresh(const Eigen::VectorXd& x) {
+  // Within a solve only samples not yet in contact are added; the others keep their triangle,
+  // weights and normal, so the energy is one fixed C1 function between additions and the line
+  // search and convergence test always see the same energy (re-fitting every iteration made
+  // the residual stall: each iteration solved a slightly different problem).
+  std::vector<char> known(rest_.rows(), 0);
+  for (const auto& c : contacts_) known[c.sample] = 1;
+  std::vector<SurfaceContact> added;
+  for (SurfaceContact& c : detect(x))
+    if (!known[c.sample]) added.push_back(std::move(c));
+  couplings_changed_ = !added.empty();
+  if (added.empty()) return false;
+  contacts_.insert(contacts_.end(), added.begin(), added.end());
+  std::sort(contacts_.begin(), contacts_.end(), [](const SurfaceContact& a, const SurfaceContact& b) { return a.sample < b.sample; });
+  return true;
 }
 
 double SelfContactForm::value(const Eigen::VectorXd& x) const {

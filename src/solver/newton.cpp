@@ -21,7 +21,7 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
     return report;
   }
   auto t0 = std::chrono::steady_clock::now();
-  problem.refresh(x);
+  problem.begin_solve(x);
   Eigen::VectorXd g = problem.gradient(x);
   double energy = problem.value(x);
   report.assembly_seconds += seconds_since(t0);

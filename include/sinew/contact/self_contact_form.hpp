@@ -83,6 +83,9 @@ class SelfContactForm final : public Form {
 
   // Contacts at positions x (does not change the form's frozen state).
   std::vector<SurfaceContact> detect(const Eigen::VectorXd& x) const;
+  // Start of a Newton solve: contacts re-detected at x (targets, weights, normals refitted).
+  bool begin_solve(const Eigen::VectorXd& x) override;
+  // Later iterations of the solve: newly penetrating samples are added, nothing else changes.
   bool refresh(const Eigen::VectorXd& x) override;
   bool couplings_changed() const override { return couplings_changed_; }
   const std::vector<SurfaceContact>& contacts() const { return contacts_; }

@@ -29,6 +29,10 @@ class Form {
   // iteration and then frozen for that iteration's value, gradient, Hessian and line search.
   // Returns true if the energy changed.
   virtual bool refresh(const Eigen::VectorXd& /*x*/) { return false; }
+  // Called instead of refresh at the first iteration of each Newton solve (a quasistatic load
+  // step or a time step). A form whose refresh only adds to its lagged state within a solve,
+  // so that the solve sees one energy growing by finitely many terms, rebuilds it here.
+  virtual bool begin_solve(const Eigen::VectorXd& x) { return refresh(x); }
   // True if the last refresh changed couplings(): the Hessian pattern is then rebuilt.
   virtual bool couplings_changed() const { return false; }
 };
