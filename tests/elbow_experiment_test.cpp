@@ -85,5 +85,24 @@ TEST(ElbowExperiment, ShippedArmSurfaceIsVoxelisedBoundAndFlexed) {
   EXPECT_TRUE(std::isfinite(run.forearm_bulge()));
 }
 
+// Self-contact on the shipped arm at nu = 0.488: every frame converges and biceps and forearm
+// end without interpenetration.
+TEST(ElbowExperiment, SelfContactKeepsBicepsAndForearmApartAtNu0488) {
+  ElbowConfig c = coarse(0.488);
+  c.arm_surface = kArm;
+  c.self_contact = true;
+  const ElbowRun run = run_elbow(c, [](const ElbowFrame& f) {
+    std::printf("  contact frame %d: %s, %d Newton, %d linear, %.2f s, %d penetrating (max %.2f mm), gap %.1f mm\n",
+                f.solve.frame, f.solve.converged ? "converged" : "NOT converged", f.solve.newton_iterations,
+                f.solve.linear_iterations, f.solve.seconds, f.contacts, 1e3 * f.max_depth, 1e3 * f.gap);
+  });
+  for (const auto& f : run.frames) EXPECT_TRUE(f.solve.converged) << "frame " << f.solve.frame << ": " << f.solve.failure;
+  std::printf("elbow on arm.obj with self-contact (h = 20 mm, SNH nu 0.488): volume %+.2f %%, biceps bulge %.2f mm, "
+              "forearm bulge %.2f mm, deepest penetration %.2f mm, gap %.1f mm, in contact: %s\n",
+              run.volume_change_percent(), 1e3 * run.biceps_bulge(), 1e3 * run.forearm_bulge(),
+              1e3 * run.frames.back().max_depth, 1e3 * run.frames.back().gap, run.in_contact() ? "yes" : "no");
+  EXPECT_FALSE(run.interpenetrating());  // no sample deeper than a quarter cell
+}
+
 }  // namespace
 }  // namespace sinew

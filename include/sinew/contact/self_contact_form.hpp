@@ -83,9 +83,10 @@ class SelfContactForm final : public Form {
 
   // Contacts at positions x (does not change the form's frozen state).
   std::vector<SurfaceContact> detect(const Eigen::VectorXd& x) const;
-  // Start of a Newton solve: contacts re-detected at x (targets, weights, normals refitted).
+  // Start of a Newton solve: the carried contacts still penetrating are refitted; none added.
   bool begin_solve(const Eigen::VectorXd& x) override;
-  // Later iterations of the solve: newly penetrating samples are added, nothing else changes.
+  // At a converged state: newly penetrating samples are added (true if any), separated
+  // contacts dropped; the others are unchanged.
   bool refresh(const Eigen::VectorXd& x) override;
   bool couplings_changed() const override { return couplings_changed_; }
   const std::vector<SurfaceContact>& contacts() const { return contacts_; }
