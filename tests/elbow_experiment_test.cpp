@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "sinew/io/surface_reader.hpp"
@@ -88,9 +89,11 @@ TEST(ElbowExperiment, ShippedArmSurfaceIsVoxelisedBoundAndFlexed) {
 // Self-contact on the shipped arm at nu = 0.488: every frame converges and biceps and forearm
 // end without interpenetration.
 TEST(ElbowExperiment, SelfContactKeepsBicepsAndForearmApartAtNu0488) {
-  ElbowConfig c = coarse(0.488);
+  const char* nu_env = std::getenv("SINEW_ELBOW_NU");
+  ElbowConfig c = coarse(nu_env ? std::atof(nu_env) : 0.488);
   c.arm_surface = kArm;
   c.self_contact = true;
+  if (const char* frames = std::getenv("SINEW_ELBOW_FRAMES")) c.frames = std::atoi(frames);
   const ElbowRun run = run_elbow(c, [](const ElbowFrame& f) {
     std::printf("  contact frame %d: %s, %d Newton, %d linear, %.2f s, %d penetrating (max %.2f mm), gap %.1f mm\n",
                 f.solve.frame, f.solve.converged ? "converged" : "NOT converged", f.solve.newton_iterations,
