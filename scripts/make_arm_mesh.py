@@ -64,6 +64,13 @@ def main():
     field = arm_sdf(grid)
     verts, faces, _, _ = measure.marching_cubes(field, level=0.0, spacing=(h, h, h))
     verts += lo
+    # Marching cubes puts a vertex on every crossed grid edge, so where the field is zero at a
+    # grid node several vertices coincide (after the 5-decimal rounding of the file, too) and
+    # the triangles between them have zero area. Weld vertices equal at the written precision
+    # and drop the triangles that collapse (an edge collapse: the surface stays closed).
+    verts, inverse = np.unique(np.round(verts, 5), axis=0, return_inverse=True)
+    faces = inverse.reshape(-1)[faces]
+    faces = faces[(faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 2] != faces[:, 0])]
     # skimage orients triangles for increasing values outward-negative; make normals point out
     # (from negative inside to positive outside) by checking the signed volume.
     v0, v1, v2 = verts[faces[:, 0]], verts[faces[:, 1]], verts[faces[:, 2]]

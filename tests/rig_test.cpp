@@ -292,5 +292,55 @@ TEST(RigScene, InlineRigDrivesARunAndBadSectionsNameThePath) {
   expect_error(bad, "missing_rig.json");
 }
 
+// Bones in a dynamic scene: the time stepper moves bound vertices with their bones at each
+// step's end (hard), or pulls them there with springs; self-contact stays on in both.
+TEST(RigScene, BonesDriveDynamicScenesHardAndWithSprings) {
+  const auto dir = std::filesystem::temp_directory_path() / "sinew_rig_dynamic_scene_test";
+  std::filesystem::create_directories(dir);
+  nlohmann::json scene = nlohmann::json::parse(R"({
+    "mesh": {"box": {"min": [0, 0, 0], "max": [1, 0.2, 0.2]}, "cells": [10, 2, 2]},
+    "material": {"family": "stable_neo_hookean", "E": 1e4, "nu": 0.4},
+    "density": 100,
+    "dynamics": {"time_step": 0.02, "substeps": 2},
+    "rig": {"bones": [
+      {"name": "left", "capsule": {"a": [0, 0.1, 0.1], "b": [0.2, 0.1, 0.1], "radius": 0.15}, "keys": [{"frame": 0}]},
+      {"name": "right", "capsule": {"a": [0.8, 0.1, 0.1], "b": [1, 0.1, 0.1], "radius": 0.15},
+       "keys": [{"frame": 0}, {"frame": 3, "translation": [0.3, 0, 0]}]}]},
+    "self_contact": {"stiffness": 1e6},
+    "frames": 3
+  })");
+  const auto file = dir / "scene.json";
+  auto run = [&](const nlohmann::json& j) {
+    std::ofstream(file) << j.dump();
+    const Scene s = load_scene(file);
+    EXPECT_TRUE(s.dynamics.has_value());
+    return run_scene(s, RunOptions{});
+  };
+  const RunSummary hard = run(scene);
+  ASSERT_EQ(hard.frames.size(), 3u);
+  EXPECT_TRUE(hard.all_converged());
+  const auto hx = hard.x.reshaped(3, hard.x.size() / 3);
+  // The right bone's vertices moved by exactly its translation, the left bone's did not move.
+  EXPECT_NEAR(hx.row(0).maxCoeff(), 1.3, 1e-12);
+  EXPECT_NEAR(hx.row(0).minCoeff(), 0.0, 1e-12);
+  // The free middle stretched, lagging the bone (inertia): it moved, but by less than 0.3.
+  const VolumeMesh bar = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.2, 0.2), Eigen::Vector3i(10, 2, 2));
+  for (Eigen::Index v = 0; v < bar.num_vertices(); ++v)
+    if (std::abs(bar.vertices(v, 0) - 0.5) < 1e-9) {
+      EXPECT_GT(hx(0, v) - 0.5, 0.01) << v;
+      EXPECT_LT(hx(0, v) - 0.5, 0.3) << v;
+    }
+
+  nlohmann::json soft = scene;
+  soft["rig"]["binding"] = "springs";
+  soft["rig"]["spring_stiffness"] = 1e5;
+  const RunSummary springs = run(soft);
+  EXPECT_TRUE(springs.all_converged());
+  const auto sx = springs.x.reshaped(3, springs.x.size() / 3);
+  // Stiff springs: the right end within a millimetre of its bone, not exactly on it.
+  EXPECT_NEAR(sx.row(0).maxCoeff(), 1.3, 1e-3);
+  EXPECT_GT(std::abs(sx.row(0).maxCoeff() - 1.3), 1e-12);
+}
+
 }  // namespace
 }  // namespace sinew

@@ -12,6 +12,7 @@
 #include "sinew/material/spec.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/solver/newton.hpp"
+#include "sinew/solver/time_stepper.hpp"
 
 namespace sinew {
 namespace {
@@ -184,12 +185,13 @@ TEST(SelfContactSolve, PenaltySeparatesTwoBlocksPushedIntoEachOther) {
           std::printf("step %d it %d residual %.3e energy %.6e alpha %.3g contacts %zu\n", step, it.iteration, it.residual, it.energy, it.step,
                       contact ? static_cast<const SelfContactForm&>(*problem.forms()[1]).contacts().size() : 0);
       });
-      // Without contact every step converges. With it, the lagged contact set (re-detected each
-      // Newton iteration) stalls at a residual near 1e1 N on this lattice-aligned pair, ~1 % of
-      // the push's forces: a known limitation (docs/self-contact.md), so only the reduction is
-      // required there.
-      if (!contact) EXPECT_TRUE(r.converged) << "step " << step << ": " << r.failure;
-      else EXPECT_LT(r.residual, 0.05 * r.initial_residual) << "step " << step << ": " << r.failure;
+      // Every step converges to the absolute force tolerance, with contact too: contacts are
+      // re-fitted only at the start of each solve and only added within it, so Newton
+      // minimises one fixed energy (it stalled near 1e1 N when they were re-fitted every
+      // iteration).
+      EXPECT_TRUE(r.converged) << "step " << step << ": " << r.failure;
+      EXPECT_LT(r.residual, ns.absolute_tolerance) << "step " << step;
+      if (contact) std::printf("  contact step %d: %d Newton iterations, residual %.2e\n", step, r.iterations, r.residual);
       x = xs;
     }
     // Overlap along x of the facing faces (mean x of a's face at rest x = 1 minus mean x of b's
@@ -209,7 +211,60 @@ TEST(SelfContactSolve, PenaltySeparatesTwoBlocksPushedIntoEachOther) {
   std::printf("two blocks pushed 0.3 into each other: face overlap %.4f without contact, %.4f with\n", free_overlap,
               contact_overlap);
   EXPECT_NEAR(free_overlap, 0.28, 1e-6);  // 0.3 push - 0.02 gap: block b passes into a rigidly
-  EXPECT_LT(contact_overlap, 0.05);       // measured 0.03: the faces' edges bulge into each other
+  // Penalty depth: the push's force over k A, about 0.01 here (measured below), plus the faces'
+  // edges bulging into each other.
+  EXPECT_LT(contact_overlap, 0.025);  // measured 0.019
+}
+
+// Dynamic solves: block b flies into block a (both free, no gravity). Without contact it
+// passes through; with contact each backward-Euler step converges and the blocks bounce off
+// each other with the overlap held at the penalty depth.
+TEST(SelfContactSolve, TimeSteppedBlocksCollideWithoutPassingThrough) {
+  const VolumeMesh m = two_blocks(0.05, 2);
+  auto disc = std::make_shared<Discretization>(m, "two blocks");
+  MaterialSpec mat;
+  mat.family = "stable_neo_hookean";
+  mat.target = YoungPoisson{1e4, 0.3};
+  const SelfContactForm probe(m, SelfContactSettings{});
+  auto run = [&](bool contact) {
+    Problem problem(m.num_vertices());
+    problem.add_form(std::make_shared<ElasticForm>(disc, build_material(mat)));
+    auto mass = std::make_shared<MassMatrix>(*disc, 100.0, MassKind::Lumped);
+    auto inertia = std::make_shared<InertiaForm>(mass, 0.01);
+    problem.add_form(inertia);
+    SelfContactSettings s;
+    s.stiffness = 1e6;
+    if (contact) problem.add_form(std::make_shared<SelfContactForm>(m, s));
+    problem.set_fixed(std::vector<char>(3 * m.num_vertices(), 0));
+    TimeStepper stepper(problem, inertia, nullptr, nullptr, {}, m.vertices, TimeStepSettings{});
+    auto linear = make_linear_solver(LinearSolverSettings{});
+    Eigen::VectorXd x = m.rest_positions(), v = Eigen::VectorXd::Zero(x.size());
+    for (Eigen::Index i = 0; i < m.num_vertices(); ++i)
+      if (in_b(m, i)) v(3 * i) = -1.0;  // the 0.05 m gap closes after 5 steps
+    double worst_overlap = 0.0;
+    for (int step = 1; step <= 20; ++step) {
+      const StepReport r = stepper.step(x, v, step - 1, step, *linear);
+      EXPECT_TRUE(r.converged) << (contact ? "contact" : "free") << " step " << step << ": " << r.failure;
+      if (!r.converged) break;
+      // Interpenetration: the deepest sample inside the other block (detection at x).
+      double depth = 0.0;
+      for (const SurfaceContact& c : probe.detect(x)) depth = std::max(depth, c.depth);
+      worst_overlap = std::max(worst_overlap, depth);
+      if (std::getenv("SINEW_DEBUG_CONTACT"))
+        std::printf("%s step %d: depth %.4f, %d Newton\n", contact ? "contact" : "free", step, depth, r.newton_iterations);
+    }
+    return std::make_pair(worst_overlap, v);
+  };
+  const auto [free_overlap, free_v] = run(false);
+  const auto [contact_overlap, contact_v] = run(true);
+  std::printf("time-stepped blocks at 1 m/s: deepest penetration %.4f m free, %.4f m with contact\n", free_overlap,
+              contact_overlap);
+  EXPECT_GT(free_overlap, 0.1);  // passes through (0.2 - 0.05)
+  EXPECT_LT(contact_overlap, 0.005);  // measured 0.0006
+  // With contact, block b ends moving away from a or at rest relative to it.
+  double va = 0.0, vb = 0.0;
+  for (Eigen::Index i = 0; i < m.num_vertices(); ++i) (in_b(m, i) ? vb : va) += contact_v(3 * i);
+  EXPECT_GE(vb - va, -1e-6 * m.num_vertices());
 }
 
 }  // namespace

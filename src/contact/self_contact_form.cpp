@@ -275,31 +275,48 @@ std::vector<SurfaceContact> SelfContactForm::detect(const Eigen::VectorXd& x) co
   return out;
 }
 
-bool SelfContactForm::refresh(const Eigen::VectorXd& x) {
-  std::vector<SurfaceContact> next = detect(x);
-  const Eigen::MatrixX3d normals = vertex_normals(x);
-  // Hysteresis: keep last iteration's contacts whose sample is not inside now but still close.
-  std::vector<char> found(rest_.rows(), 0);
-  for (const auto& c : next) found[c.sample] = 1;
-  for (SurfaceContact c : contacts_) {
-    if (found[c.sample]) continue;
-    const Eigen::Vector3d n = surface_normal(x, normals, c);
-    if (!(n.norm() > 0.0)) continue;
-    c.normal = n.normalized();
-    c.target = target(x, c);
-    const double gap = c.normal.dot(position(x, c.sample) - c.target);
-    if (gap > 0.25 * cell_) continue;
-    c.depth = std::max(0.0, -gap);
-    next.push_back(c);
+bool SelfContactForm::begin_solve(const Eigen::VectorXd& x) {
+  // Contacts carried over from the last solve are refitted where their sample is still found
+  // inside the body (fresh triangle, weights and normal). No contact is added here: at a
+  // solve's start the bones have just jumped and the flesh next to them is distorted, so new
+  // detections there would be false ones.
+  if (contacts_.empty()) return false;
+  std::vector<int> index(rest_.rows(), -1);
+  for (size_t i = 0; i < contacts_.size(); ++i) index[contacts_[i].sample] = static_cast<int>(i);
+  couplings_changed_ = false;
+  for (SurfaceContact& fresh : detect(x)) {
+    const int i = index[fresh.sample];
+    if (i < 0) continue;
+    couplings_changed_ = couplings_changed_ || fresh.triangle != contacts_[i].triangle;
+    contacts_[i] = std::move(fresh);
   }
+  return true;
+}
+
+bool SelfContactForm::refresh(const Eigen::VectorXd& x) {
+  // Called at a converged state. Newly penetrating samples are added; contacts whose sample is
+  // now more than a quarter cell outside are dropped (they contribute neither energy nor force
+  // at x). The others keep their triangle, weights and normal, so the energy changes only by
+  // additions, finitely often per solve, and Newton minimises one fixed C1 energy in between
+  // (re-fitting every contact at every iteration made the residual stall).
+  std::vector<char> known(rest_.rows(), 0);
+  for (const auto& c : contacts_) known[c.sample] = 1;
+  std::vector<SurfaceContact> next;
+  for (const SurfaceContact& c : contacts_) {
+    const double gap = c.normal.dot(position(x, c.sample) - target(x, c));
+    if (gap <= 0.25 * cell_) next.push_back(c);
+  }
+  const bool removed = next.size() != contacts_.size();
+  bool added = false;
+  for (SurfaceContact& c : detect(x))
+    if (!known[c.sample]) {
+      next.push_back(std::move(c));
+      added = true;
+    }
+  couplings_changed_ = added || removed;
   std::sort(next.begin(), next.end(), [](const SurfaceContact& a, const SurfaceContact& b) { return a.sample < b.sample; });
-  const bool had = !contacts_.empty();
-  couplings_changed_ = next.size() != contacts_.size() ||
-                       !std::equal(next.begin(), next.end(), contacts_.begin(), [](const SurfaceContact& a, const SurfaceContact& b) {
-                         return a.sample == b.sample && a.triangle == b.triangle;
-                       });
   contacts_ = std::move(next);
-  return had || !contacts_.empty();
+  return added;
 }
 
 double SelfContactForm::value(const Eigen::VectorXd& x) const {

@@ -31,8 +31,16 @@ double voxel_cell_size(const Eigen::AlignedBox3d& bounds, const VoxelizeOptions&
 }
 
 VolumeMesh voxelize_surface(const InsideTest& shape, const VoxelizeOptions& options) {
-  const Eigen::AlignedBox3d& bounds = shape.bounds();
+  Eigen::AlignedBox3d bounds = shape.bounds();
   const double h = voxel_cell_size(bounds, options);
+  if (options.grid_origin) {
+    const Eigen::Vector3d& o = *options.grid_origin;
+    if (!o.allFinite()) throw Error("grid_origin must be finite", "voxelize");
+    // Snap the lattice's start down onto the grid through o (a hair of tolerance, so a bound
+    // already on a grid plane stays there).
+    const Eigen::Vector3d steps = ((bounds.min() - o) / h).array() + 1e-9;
+    bounds.min() = o + h * steps.array().floor().matrix();
+  }
   Eigen::Vector3i cells;
   for (int i = 0; i < 3; ++i)  // the tolerance keeps an exact multiple of h from adding an empty layer
     cells(i) = std::max(1, static_cast<int>(std::ceil(bounds.sizes()(i) / h - 1e-9)));

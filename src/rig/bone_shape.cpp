@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sinew/core/error.hpp"
+#include "sinew/io/surface_reader.hpp"
 
 namespace sinew {
 
@@ -22,5 +23,19 @@ double CapsuleShape::distance_to_axis(const Eigen::Vector3d& p) const {
 }
 
 bool CapsuleShape::contains(const Eigen::Vector3d& p) const { return distance_to_axis(p) <= radius_; }
+
+static TriangleSurface validated(TriangleSurface surface, const std::string& source) {
+  surface.validate(source, /*require_closed=*/true);
+  return surface;
+}
+
+MeshBoneShape::MeshBoneShape(TriangleSurface surface, const std::string& source)
+    : surface_(validated(std::move(surface), source)), inside_(surface_) {}
+
+bool MeshBoneShape::contains(const Eigen::Vector3d& p) const { return inside_.inside(p); }
+
+std::shared_ptr<MeshBoneShape> load_mesh_bone(const std::filesystem::path& file) {
+  return std::make_shared<MeshBoneShape>(read_triangle_surface(file, /*require_closed=*/true), file.string());
+}
 
 }  // namespace sinew

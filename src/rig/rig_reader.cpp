@@ -46,12 +46,22 @@ Bone parse_bone(JsonObject o) {
   Bone bone;
   bone.name = o.string("name");
   if (bone.name.empty()) o.fail("name", "must not be empty");
-  if (o.has("mesh"))
-    o.fail("mesh", "mesh bones need the surface inside test, which this build does not have yet; use a capsule");
-  JsonObject c = o.object("capsule");
-  c.allow({"a", "b", "radius"});
-  bone.shape = std::make_shared<CapsuleShape>(c.vec3("a"), c.vec3("b"), c.positive("radius"));
-  c.finish();
+  if (o.has("mesh") == o.has("capsule")) o.fail(o.has("mesh") ? "mesh" : "capsule", "give exactly one of capsule and mesh");
+  if (o.has("mesh")) {
+    // Relative to the file the rig was read from (the rig file, or the scene for an inline rig).
+    std::filesystem::path mesh = o.string("mesh");
+    if (mesh.is_relative()) mesh = std::filesystem::path(o.file()).parent_path() / mesh;
+    try {
+      bone.shape = load_mesh_bone(mesh);
+    } catch (const Error& e) {
+      throw e.within(o.file() + ": " + o.path_of("mesh"));
+    }
+  } else {
+    JsonObject c = o.object("capsule");
+    c.allow({"a", "b", "radius"});
+    bone.shape = std::make_shared<CapsuleShape>(c.vec3("a"), c.vec3("b"), c.positive("radius"));
+    c.finish();
+  }
   const std::string motion = o.choice("motion", {"rigid", "affine"}, "rigid");
   bone.motion = motion == "rigid" ? BoneMotion::Rigid : BoneMotion::Affine;
   for (JsonObject key : o.objects("keys")) {

@@ -5,10 +5,15 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "sinew/core/error.hpp"
 #include "sinew/fem/discretization.hpp"
 #include "sinew/fem/elastic_form.hpp"
+#include "sinew/fem/embedding.hpp"
+#include "sinew/io/surface_reader.hpp"
+#include "sinew/mesh/inside_test.hpp"
+#include "sinew/mesh/voxelize.hpp"
 #include "sinew/material/spec.hpp"
 #include "sinew/rig/bone_spring_form.hpp"
 #include "sinew/solver/newton.hpp"
@@ -77,6 +82,14 @@ VolumeMesh arm_lattice(double h) {
   return occupancy_lattice(Eigen::AlignedBox3d(lo, hi), cells, [&](const Eigen::Vector3d& p) { return sdf(p) <= 0.0; });
 }
 
+VolumeMesh arm_lattice(const TriangleSurface& arm, double h) {
+  if (!(std::isfinite(h) && h > 0.0 && h < 0.1)) throw Error("cell size must be in (0, 0.1) m", "arm lattice");
+  VoxelizeOptions options;
+  options.cell_size = h;
+  options.grid_origin = Eigen::Vector3d::Zero();
+  return voxelize_surface(InsideTest(arm), options);
+}
+
 Rig elbow_rig(int frames, double degrees, double bone_radius) {
   if (frames < 1) throw Error("frames must be at least 1", "elbow rig");
   Rig rig;
@@ -123,7 +136,9 @@ double ElbowRun::mean_seconds() const {
 ElbowRun run_elbow(const ElbowConfig& c, const std::function<void(const ElbowFrame&)>& on_frame) {
   const std::string where = "elbow experiment";
   if (c.frames < 1) throw Error("frames must be at least 1", where);
-  auto disc = std::make_shared<Discretization>(arm_lattice(c.cell_size), where);
+  std::optional<TriangleSurface> arm;
+  if (!c.arm_surface.empty()) arm = read_triangle_surface(c.arm_surface);
+  auto disc = std::make_shared<Discretization>(arm ? arm_lattice(*arm, c.cell_size) : arm_lattice(c.cell_size), where);
   const VolumeMesh& mesh = disc->mesh();
   MaterialSpec material;
   material.family = c.family;
@@ -154,16 +169,39 @@ ElbowRun run_elbow(const ElbowConfig& c, const std::function<void(const ElbowFra
 
   // Surface samples by side: rest x below the elbow belongs to the upper arm (biceps side).
   const std::vector<int>& samples = contact_form->samples();
-  std::vector<int> free_upper, free_fore, far_upper, far_fore;
+  std::vector<int> far_upper, far_fore;
   for (int s : samples) {
-    const double X = mesh.vertices(s, 0);
-    // Bulges are measured on the bellies, away from the shoulder end, the elbow (whose flesh
-    // swings with the forearm) and the wrist end.
-    if (binding.bone[s] < 0 && X > 0.04 && X < kElbowX - 0.06) free_upper.push_back(s);
-    if (binding.bone[s] < 0 && X > kElbowX + 0.06 && X < kWristX - 0.04) free_fore.push_back(s);
     // Away from the elbow's own flesh, for the biceps-forearm gap.
+    const double X = mesh.vertices(s, 0);
     if (X < kElbowX - 0.06) far_upper.push_back(s);
     if (X > kElbowX + 0.06) far_fore.push_back(s);
+  }
+  // Bulge probes: rest points and how to follow them. Bulges are measured on the bellies, away
+  // from the shoulder end, the elbow (whose flesh swings with the forearm) and the wrist end.
+  Eigen::MatrixX3d probe_rest;
+  std::optional<Embedding> probe_embedding;
+  if (arm) {
+    probe_rest = arm->vertices;
+    probe_embedding = embed_points(mesh, probe_rest);
+  } else {
+    std::vector<int> free_samples;
+    for (int s : samples)
+      if (binding.bone[s] < 0) free_samples.push_back(s);
+    probe_rest.resize(static_cast<Eigen::Index>(free_samples.size()), 3);
+    for (size_t i = 0; i < free_samples.size(); ++i) probe_rest.row(static_cast<Eigen::Index>(i)) = mesh.vertices.row(free_samples[i]);
+    // The lattice vertices themselves: a one-node "embedding".
+    Embedding e;
+    e.nodes.resize(probe_rest.rows(), 1);
+    e.weights = Eigen::MatrixXd::Ones(probe_rest.rows(), 1);
+    for (size_t i = 0; i < free_samples.size(); ++i) e.nodes(static_cast<Eigen::Index>(i), 0) = free_samples[i];
+    e.element.assign(free_samples.size(), -1);
+    probe_embedding = std::move(e);
+  }
+  std::vector<int> free_upper, free_fore;
+  for (Eigen::Index p = 0; p < probe_rest.rows(); ++p) {
+    const double X = probe_rest(p, 0);
+    if (X > 0.04 && X < kElbowX - 0.06) free_upper.push_back(static_cast<int>(p));
+    if (X > kElbowX + 0.06 && X < kWristX - 0.04) free_fore.push_back(static_cast<int>(p));
   }
 
   Eigen::VectorXd x = mesh.rest_positions();
@@ -197,9 +235,10 @@ ElbowRun run_elbow(const ElbowConfig& c, const std::function<void(const ElbowFra
     // Radial growth about each bone's deformed axis line.
     const Affine34 A = rig.bones[1].transform_at(frame);
     const Eigen::Vector3d fore_dir = A.leftCols<3>() * Eigen::Vector3d::UnitX();
-    auto growth = [&](int s, const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
-      const Eigen::Vector3d X = mesh.vertices.row(s).transpose();
-      return point_line_distance(x.segment<3>(3 * s), o, dir) -
+    const Eigen::MatrixX3d probes = probe_embedding->positions(x);
+    auto growth = [&](int p, const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
+      const Eigen::Vector3d X = probe_rest.row(p).transpose();
+      return point_line_distance(probes.row(p).transpose(), o, dir) -
              point_line_distance(X, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX());
     };
     f.biceps_bulge = -std::numeric_limits<double>::infinity();

@@ -103,9 +103,10 @@ namespace {
 
 MeshSpec parse_mesh(JsonObject o, const std::filesystem::path& folder) {
   o.allow({"box", "cylinder", "sphere", "voxels", "file", "cells", "cell_size", "resolution", "element", "surface",
-           "tetrahedralize", "max_edge", "non_manifold", "embed", "reorient"});
+           "tetrahedralize", "max_edge", "non_manifold", "embed", "reorient", "grid_origin"});
   MeshSpec spec;
   if (parse_surface_mesh(o, folder, spec)) return spec;  // scene_surface.cpp
+  if (o.has("grid_origin")) o.fail("grid_origin", "only with surface (a voxelised surface)");
   spec.embed = parse_embedded_surface(o, folder, std::nullopt);
   const int kinds = int(o.has("box")) + int(o.has("cylinder")) + int(o.has("sphere")) + int(o.has("voxels")) +
                     int(o.has("file"));

@@ -49,11 +49,12 @@ bool parse_surface_mesh(JsonObject& o, const std::filesystem::path& folder, Mesh
     if (int(o.has("cell_size")) + int(o.has("resolution")) != 1) o.fail("", "give exactly one of cell_size or resolution");
     if (o.has("cell_size")) spec.cell_size = o.positive("cell_size");
     if (o.has("resolution")) spec.resolution = o.integer("resolution", 1);
-    spec.source = SurfaceVoxels{path, o.boolean("non_manifold", false)};
+    spec.source = SurfaceVoxels{path, o.boolean("non_manifold", false), std::nullopt};
+    if (o.has("grid_origin")) std::get<SurfaceVoxels>(spec.source).grid_origin = o.vec3("grid_origin");
     spec.element = o.choice("element", {"hex", "tet"}, "hex") == "hex" ? ElementKind::Hex8 : ElementKind::Tet4;
   } else {
     const std::filesystem::path path = existing_file(o, "tetrahedralize", folder);
-    for (const char* key : {"cell_size", "resolution", "non_manifold", "element"})
+    for (const char* key : {"cell_size", "resolution", "non_manifold", "element", "grid_origin"})
       if (o.has(key)) o.fail(key, "not used by tetrahedralize (its size is max_edge)");
     spec.source = SurfaceTetrahedra{path, o.positive("max_edge")};
     spec.element = ElementKind::Tet4;
@@ -71,6 +72,7 @@ std::optional<VolumeMesh> build_surface_mesh(const MeshSpec& spec) {
     options.cell_size = spec.cell_size;
     options.resolution = spec.resolution;
     options.non_manifold = v->non_manifold;
+    options.grid_origin = v->grid_origin;
     VolumeMesh mesh = voxelize_surface(InsideTest(surface), options);
     if (spec.element == ElementKind::Tet4) mesh = tetrahedralize_hexes(mesh);
     return mesh;

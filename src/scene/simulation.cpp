@@ -227,6 +227,10 @@ Model build_model(const Scene& scene) {
   }
   m.dynamic = build_dynamic_model(scene, m.disc, m.elastic, m.surface, *m.problem, m.kinematics);
   m.rig = make_scene_rig(scene, mesh, *m.problem);
+  // Bones drive their vertices at every time step's end, like the boundary motions.
+  if (m.dynamic.dynamic() && m.rig.rig)
+    m.dynamic.stepper->add_kinematic_hook([rig = m.rig](double frame, const Eigen::MatrixX3d& rest, Eigen::VectorXd& x,
+                                                         std::vector<char>& fixed) { rig.apply(frame, rest, x, fixed); });
   return m;
 }
 

@@ -43,11 +43,15 @@ bool Problem::is_valid(const Eigen::VectorXd& x) const {
   return true;
 }
 
-bool Problem::refresh(const Eigen::VectorXd& x) {
+bool Problem::refresh(const Eigen::VectorXd& x) { return refresh_forms(x, false); }
+
+bool Problem::begin_solve(const Eigen::VectorXd& x) { return refresh_forms(x, true); }
+
+bool Problem::refresh_forms(const Eigen::VectorXd& x, bool start_of_solve) {
   bool changed = false;
   bool repattern = false;
   for (const auto& f : forms_) {
-    changed = f->refresh(x) || changed;
+    changed = (start_of_solve ? f->begin_solve(x) : f->refresh(x)) || changed;
     repattern = repattern || f->couplings_changed();
   }
   if (repattern) hessian_.reset();

@@ -26,6 +26,7 @@ StepReport TimeStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double fram
   Eigen::VectorXd trial = x;
   std::vector<char> fixed(trial.size(), 0);
   apply_kinematics(kinematics_, rest_, frame1, trial, fixed);
+  for (const auto& hook : hooks_) hook(frame1, rest_, trial, fixed);
   problem_.set_fixed(fixed);
 
   NewtonSettings newton = settings_.newton;

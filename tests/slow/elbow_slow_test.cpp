@@ -5,11 +5,14 @@
 // step on 45,809 hexahedra). Skips itself unless SINEW_SLOW_TESTS=1:
 //   SINEW_SLOW_TESTS=1 build/tests/sinew_slow_tests --gtest_filter='ElbowSlow*'
 // SINEW_ELBOW_CELL (metres, default 0.01), SINEW_ELBOW_FRAMES (default 12) and
-// SINEW_ELBOW_CONTACT=1 (reference-map self-contact on; off by default, see docs/experiments.md).
+// SINEW_ELBOW_CONTACT=1 (reference-map self-contact on; off by default, see docs/experiments.md),
+// SINEW_ELBOW_SURFACE (the arm surface to voxelise, default examples/meshes/arm.obj; "analytic"
+// for the occupancy lattice of arm_sdf()).
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "sinew/scene/elbow_experiment.hpp"
@@ -29,6 +32,9 @@ double env_number(const char* name, double fallback) {
 
 ElbowRun run(const std::string& family, double nu) {
   ElbowConfig c;
+  const char* surface = std::getenv("SINEW_ELBOW_SURFACE");
+  if (!surface) c.arm_surface = std::filesystem::path(SINEW_EXAMPLES) / "meshes" / "arm.obj";
+  else if (std::string(surface) != "analytic") c.arm_surface = surface;
   c.family = family;
   c.nu = nu;
   if (family == "stvk_kikuuwe") c.parameters["kappa"] = 8e8;  // Fig. 10's compression resistance

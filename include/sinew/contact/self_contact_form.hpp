@@ -1,6 +1,7 @@
 #pragma once
 // Reference-map penalty self-contact (paper 000 §6, after Hirota et al. 2001 and Irving et al.
-// 2004). Every boundary vertex is a surface sample. At the start of each Newton iteration:
+// 2004). Every boundary vertex is a surface sample. Whenever a Newton solve has converged with
+// its current contact set (Form::refresh):
 //   1. a uniform spatial grid over the deformed tetrahedra (the Kuhn split of a hexahedral
 //      lattice, or the mesh's own tetrahedra) finds samples inside a tetrahedron that shares no
 //      vertex with the sample's own elements (the excluded neighbourhood: a transiently
@@ -15,21 +16,20 @@
 // Energy: E = sum_s k A_s / 2 min(0, n_s . (x_s - sum_i w_i x_i))^2, A_s the sample's share of
 // rest boundary area (so k is a pressure per unit penetration depth, Pa/m, independent of the
 // resolution) and n_s the outward unit surface normal at the target (vertex normals interpolated): a one-sided frictionless
-// spring along the normal (C1; zero once the sample is back outside). A contact found in one
-// Newton iteration is kept (same triangle and weights) while its sample stays within a quarter
-// grid cell outside that surface, so a sample sitting on the surface does not flip the contact
-// set from iteration to iteration. (A spring on the full vector x_s - t_s also pulls tangentially wherever the two linear
-// maps miss the deformed closest point, and the surfaces then creep along each other from one
-// Newton iteration to the next without converging.)
-// Lagged: the contact set, each target's triangle, weights w and normal n are frozen during a
-// Newton iteration (Form::refresh recomputes them at the iteration's start); the target itself
-// moves with its triangle's vertices, so the spring pushes both sides apart (action and
-// reaction) and within an iteration E is convex, with PSD Hessian k A_s [1, -w]^T [1, -w] (x) n n^T
-// on penetrating samples.
-// A changed contact set changes couplings(), and Problem rebuilds the Hessian pattern.
-// Freezing the target position instead makes two-sided contact oscillate: each face jumps to
-// the other's old position. The form is solver-agnostic: quasistatic and time-stepped solves
-// both call it through Problem.
+// spring along the normal (C1; zero once the sample is back outside).
+// New samples are added at converged states only and existing contacts keep their triangle,
+// weights and normal, so Newton minimises one fixed energy between finitely many additions
+// (re-fitting every contact at every iteration made the residual stall) and never detects at
+// the distorted iterates of a solve's start. Contacts more than a quarter grid cell outside
+// are dropped; at each solve's start (Form::begin_solve) the carried contacts still inside the
+// body are refitted. (A spring on the full vector x_s - t_s also pulls tangentially wherever
+// the two linear maps miss the deformed closest point, so only the normal part is used.)
+// The target moves with its triangle's vertices, so the spring pushes both sides apart (action
+// and reaction); E is convex with PSD Hessian k A_s [1, -w]^T [1, -w] (x) n n^T on penetrating
+// samples. A changed contact set changes couplings(), and Problem rebuilds the Hessian
+// pattern. Freezing the target position instead makes two-sided contact oscillate: each face
+// jumps to the other's old position. The form is solver-agnostic: quasistatic and time-stepped
+// solves both call it through Problem.
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -83,6 +83,10 @@ class SelfContactForm final : public Form {
 
   // Contacts at positions x (does not change the form's frozen state).
   std::vector<SurfaceContact> detect(const Eigen::VectorXd& x) const;
+  // Start of a Newton solve: the carried contacts still penetrating are refitted; none added.
+  bool begin_solve(const Eigen::VectorXd& x) override;
+  // At a converged state: newly penetrating samples are added (true if any), separated
+  // contacts dropped; the others are unchanged.
   bool refresh(const Eigen::VectorXd& x) override;
   bool couplings_changed() const override { return couplings_changed_; }
   const std::vector<SurfaceContact>& contacts() const { return contacts_; }

@@ -25,9 +25,13 @@ class Form {
   // False where the energy is undefined at x (e.g. an inverted element of a log-based
   // material): the line search treats such a step as infinitely costly.
   virtual bool is_valid(const Eigen::VectorXd& /*x*/) const { return true; }
-  // Lagged state (e.g. self-contact targets) recomputed at x at the start of every Newton
-  // iteration and then frozen for that iteration's value, gradient, Hessian and line search.
-  // Returns true if the energy changed.
+  // Lagged state (e.g. self-contact targets), frozen while Newton iterates. begin_solve is
+  // called at the start of each Newton solve (a quasistatic load step or a time step); refresh
+  // whenever Newton has converged with the current state, and Newton goes on iterating if it
+  // returns true (the energy changed). A form must change its energy only finitely often per
+  // solve (e.g. only add terms in refresh), so the solve sees one energy between changes and
+  // ends. Both return true if the energy changed.
+  virtual bool begin_solve(const Eigen::VectorXd& /*x*/) { return false; }
   virtual bool refresh(const Eigen::VectorXd& /*x*/) { return false; }
   // True if the last refresh changed couplings(): the Hessian pattern is then rebuilt.
   virtual bool couplings_changed() const { return false; }

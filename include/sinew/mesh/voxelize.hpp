@@ -21,9 +21,13 @@ struct VoxelizeOptions {
   // one copy per group of its kept cells connected through shared faces, so parts that touch
   // only along an edge or at a vertex are not glued together.
   bool non_manifold = false;
+  // A point the lattice's grid planes pass through (the lattice then starts at the largest grid
+  // point at or below the bounding-box minimum). Rigs want planes through their bone axes, so
+  // that a thin bone binds a ring of vertices around its axis rather than one line or none.
+  std::optional<Eigen::Vector3d> grid_origin;
 };
 
-// The lattice starts at the surface's bounding-box minimum; a sinew::Error says why when the
+// The lattice starts at the surface's bounding-box minimum (or on options.grid_origin's grid); a sinew::Error says why when the
 // options are invalid, the lattice would be too large or no cell is kept.
 VolumeMesh voxelize_surface(const InsideTest& shape, const VoxelizeOptions& options);
 

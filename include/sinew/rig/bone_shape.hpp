@@ -1,12 +1,12 @@
 #pragma once
 // The rest-pose volume of a bone. Lattice vertices inside it at rest are bound to the bone.
-// Only the inside test is needed, so a closed triangle mesh can implement it too.
-// TODO(lead, after merging helper C): add a MeshBoneShape that wraps the robust inside test
-// of include/sinew/mesh/inside_test.hpp over a closed surface read by C's surface readers,
-// and let rig_reader.cpp accept {"mesh": "bone.obj"} shapes (it rejects them today).
+// Only the inside test is needed, so a closed triangle mesh implements it too (MeshBoneShape).
 #include <Eigen/Core>
+#include <filesystem>
 #include <memory>
 #include <string>
+
+#include "sinew/mesh/inside_test.hpp"
 
 namespace sinew {
 
@@ -33,5 +33,24 @@ class CapsuleShape final : public BoneShape {
   Eigen::Vector3d a_, b_;
   double radius_;
 };
+
+// The solid enclosed by a closed triangle surface (a bone mesh exported from a skinning rig).
+// Points on the surface count as inside, like the capsule's boundary.
+class MeshBoneShape final : public BoneShape {
+ public:
+  // `surface` must be closed (TriangleSurface::validate); `source` names it in errors.
+  MeshBoneShape(TriangleSurface surface, const std::string& source);
+  std::string kind() const override { return "mesh"; }
+  bool contains(const Eigen::Vector3d& p) const override;
+  const TriangleSurface& surface() const { return surface_; }
+
+ private:
+  TriangleSurface surface_;
+  InsideTest inside_;  // built once over surface_: the AABB tree answers every lattice vertex
+};
+
+// Reads a closed bone surface (OBJ, STL, PLY, OFF; io/surface_reader.hpp). An open, inside-out
+// or unreadable file is a sinew::Error naming the file.
+std::shared_ptr<MeshBoneShape> load_mesh_bone(const std::filesystem::path& file);
 
 }  // namespace sinew

@@ -3,17 +3,18 @@
 // forearm with a flexor bulge) is voxelised into a hexahedral lattice, two capsule bones
 // (humerus fixed, radius/ulna turned about the elbow axis) drive it from 0 to 120 degrees over
 // the frames, and reference-map self-contact keeps biceps and forearm apart.
-// The arm is the analytic signed distance arm_sdf(), the same function from which
-// scripts/make_arm_mesh.py extracts examples/meshes/arm.obj.
-// TODO(lead, after merging helper C): voxelise examples/meshes/arm.obj with
-// mesh/voxelize.hpp instead of arm_sdf() and compare the two lattices.
+// The arm is the shipped surface examples/meshes/arm.obj voxelised with mesh/voxelize.hpp
+// (ElbowConfig::arm_surface), its vertices embedded in the lattice; the analytic signed distance
+// arm_sdf() it was extracted from (scripts/make_arm_mesh.py) remains for runs without the file.
 #include <array>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "sinew/contact/self_contact_form.hpp"
 #include "sinew/mesh/lattice.hpp"
+#include "sinew/mesh/triangle_surface.hpp"
 #include "sinew/rig/rig.hpp"
 #include "sinew/scene/experiments.hpp"
 
@@ -39,6 +40,9 @@ Eigen::AlignedBox3d arm_bounds();
 // The arm's hexahedral lattice with cell size h; the lattice planes y = 0 and z = 0 pass
 // through the bone axes so that every resolution binds vertices around them.
 VolumeMesh arm_lattice(double h);
+// The same from a closed arm surface (examples/meshes/arm.obj): voxelize_surface with the grid
+// planes through the origin, so again y = 0 and z = 0 are lattice planes.
+VolumeMesh arm_lattice(const TriangleSurface& arm, double h);
 
 // Humerus (never moves) and radius/ulna (rigid, keyed at frames 0 and `frames`, turned by
 // `degrees` about the elbow axis; slerp between).
@@ -47,6 +51,9 @@ VolumeMesh arm_lattice(double h);
 Rig elbow_rig(int frames, double degrees = 120.0, double bone_radius = 0.016);
 
 struct ElbowConfig {
+  // The arm surface to voxelise (examples/meshes/arm.obj); empty: arm_sdf(). With a surface
+  // the bulges are measured on its embedded vertices, otherwise on the lattice's boundary.
+  std::filesystem::path arm_surface;
   std::string family = "stable_neo_hookean";
   double E = 1e5;
   double nu = 0.45;
@@ -65,8 +72,9 @@ struct ElbowFrame {
   ExperimentFrame solve;  // iterations, volume, timings
   int contacts = 0;       // penetrating samples at the end of the frame
   double max_depth = 0.0;
-  // Max radial growth (m) of free surface vertices about the bone axis, over the biceps belly
-  // (rest x in [0.04, 0.24]) and the forearm belly (rest x in [0.36, 0.52]).
+  // Max radial growth (m) of surface vertices about the bone axis, over the biceps belly
+  // (rest x in [0.04, 0.24]) and the forearm belly (rest x in [0.36, 0.52]): the embedded arm
+  // surface's vertices, or the lattice's free boundary vertices without a surface.
   double biceps_bulge = 0.0, forearm_bulge = 0.0;
   double gap = 0.0;  // smallest distance between biceps-side and forearm-side surface samples
 };

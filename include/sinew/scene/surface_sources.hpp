@@ -1,7 +1,9 @@
 #pragma once
 // Scene mesh sources made from a closed triangle surface (docs/scene-format.md, "Surfaces"):
 // a voxelised lattice or a Gmsh tetrahedralisation.
+#include <Eigen/Core>
 #include <filesystem>
+#include <optional>
 
 namespace sinew {
 
@@ -9,6 +11,7 @@ namespace sinew {
 struct SurfaceVoxels {
   std::filesystem::path path;  // resolved against the scene's folder
   bool non_manifold = false;
+  std::optional<Eigen::Vector3d> grid_origin;  // "grid_origin": a point the grid planes pass through
 };
 // {"tetrahedralize": FILE, "max_edge"}: mesh/tetrahedralize_surface.hpp.
 struct SurfaceTetrahedra {

@@ -30,9 +30,12 @@ class Problem {
   bool is_valid(const Eigen::VectorXd& x) const;
   // Form::refresh on every form; true if any energy changed.
   bool refresh(const Eigen::VectorXd& x);
+  // Form::begin_solve on every form (a Newton solve's first iteration); true if any energy changed.
+  bool begin_solve(const Eigen::VectorXd& x);
 
  private:
   void ensure_pattern();
+  bool refresh_forms(const Eigen::VectorXd& x, bool start_of_solve);
   Eigen::Index num_vertices_;
   std::vector<std::shared_ptr<Form>> forms_;
   std::vector<char> fixed_;

@@ -44,6 +44,13 @@ class TimeStepper {
 
   double time_step() const { return inertia_->time_step(); }
 
+  // Kinematic conditions beyond the rigid ones (e.g. rig bones): called after them with the
+  // step's end frame, the rest positions, the trial positions and the fixed-DOF flags, and
+  // free to move vertices and fix their DOFs (a later condition wins on a shared vertex).
+  using KinematicHook =
+      std::function<void(double frame, const Eigen::MatrixX3d& rest, Eigen::VectorXd& x, std::vector<char>& fixed)>;
+  void add_kinematic_hook(KinematicHook hook) { hooks_.push_back(std::move(hook)); }
+
   // Advances positions x and velocities v by one time step, from frame0 to frame1 (fractional
   // frame numbers: what boundary motions and obstacle paths are functions of). On failure x
   // and v are left at the step's start.
@@ -56,6 +63,7 @@ class TimeStepper {
   std::shared_ptr<DampingForm> damping_;
   std::shared_ptr<PenaltyContactForm> contact_;
   std::vector<KinematicCondition> kinematics_;
+  std::vector<KinematicHook> hooks_;
   Eigen::MatrixX3d rest_;
   TimeStepSettings settings_;
 };
