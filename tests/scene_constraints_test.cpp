@@ -202,5 +202,14 @@ TEST(SceneConstraints, NonPinnedBoundaryAndResumeAreRefused) {
   expect_contains(error_message([&] { run_scene(load_scene(file), options); }), {"--resume"});
 }
 
+TEST(SceneConstraints, SelfContactIsRefusedNotIgnored) {
+  test::TempDir dir;
+  const auto file = dir.path() / "scene.json";
+  json j = beam_scene();
+  j["self_contact"] = {{"stiffness", 1e4}};
+  std::ofstream(file) << j.dump();
+  expect_contains(error_message([&] { run_scene(load_scene(file), {}); }), {"/self_contact", "constraints"});
+}
+
 }  // namespace
 }  // namespace sinew

@@ -72,6 +72,9 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
   const int frames = options.frames.value_or(scene.frames);
   if (frames < 1) throw Error(fmt::format("must be at least 1, got {}", frames), "--frames");
   if (options.resume) throw Error("resuming is not available for scenes with a constraints section (yet)", "--resume");
+  // Bones and self-contact drive the incremental-potential solver only; refuse rather than ignore.
+  if (scene.rig) throw Error("bones are not supported with a constraints section", file + ": /rig");
+  if (scene.self_contact) throw Error("self-contact is not supported with a constraints section", file + ": /self_contact");
 
   // ---- model, validated before anything is written
   auto disc = std::make_shared<Discretization>(build_scene_mesh(scene), file + ": /mesh");
