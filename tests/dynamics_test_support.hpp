@@ -1,7 +1,9 @@
 #pragma once
-// Finite-difference checks of a Form's gradient and Hessian, shared by the dynamics and contact
-// tests.
+// Finite-difference checks of a Form's gradient and Hessian, shared by the dynamics, contact and
+// rig tests.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "sinew/fem/form.hpp"
 
@@ -41,6 +43,22 @@ inline FormDerivativeErrors form_derivative_errors(const Form& form, const Eigen
   e.hessian = (K - K_fd).norm() / std::max(K.norm(), 1e-300);
   e.asymmetry = (K - K.transpose()).norm() / std::max(K.norm(), 1e-300);
   return e;
+}
+
+// Per-entry central differences at x: the value's derivative against the gradient g, and the
+// gradient's derivative against the Hessian K, both as the caller assembled them.
+inline void expect_derivatives_match_per_entry(const Form& form, const Eigen::VectorXd& x, const Eigen::VectorXd& g,
+                                               const Eigen::MatrixXd& K, double eps = 1e-6) {
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    Eigen::VectorXd xp = x, xm = x;
+    xp(i) += eps;
+    xm(i) -= eps;
+    EXPECT_NEAR((form.value(xp) - form.value(xm)) / (2 * eps), g(i), 1e-6 * (1.0 + std::abs(g(i)))) << "DOF " << i;
+    Eigen::VectorXd gp = Eigen::VectorXd::Zero(x.size()), gm = gp;
+    form.add_gradient(xp, gp);
+    form.add_gradient(xm, gm);
+    EXPECT_LE(((gp - gm) / (2 * eps) - K.col(i)).norm(), 1e-6 * (1.0 + K.col(i).norm())) << "DOF " << i;
+  }
 }
 
 }  // namespace sinew::testing_support

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "dynamics_test_support.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/fem/discretization.hpp"
 #include "sinew/fem/elastic_form.hpp"
@@ -122,18 +123,8 @@ TEST(RigSprings, GradientAndHessianMatchFiniteDifferences) {
   BlockHessian H(mesh.num_vertices(), cliques);
   form.add_hessian(x, H);
   const Eigen::MatrixXd K(H.matrix());
-  const double eps = 1e-6;
   ASSERT_GT(g.norm(), 1.0);
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    Eigen::VectorXd xp = x, xm = x;
-    xp(i) += eps;
-    xm(i) -= eps;
-    EXPECT_NEAR((form.value(xp) - form.value(xm)) / (2 * eps), g(i), 1e-6 * (1.0 + std::abs(g(i))));
-    Eigen::VectorXd gp = Eigen::VectorXd::Zero(x.size()), gm = gp;
-    form.add_gradient(xp, gp);
-    form.add_gradient(xm, gm);
-    EXPECT_LE(((gp - gm) / (2 * eps) - K.col(i)).norm(), 1e-6 * (1.0 + K.col(i).norm()));
-  }
+  testing_support::expect_derivatives_match_per_entry(form, x, g, K);
 }
 
 nlohmann::json valid_rig_json() {

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <random>
 
+#include "dynamics_test_support.hpp"
 #include "sinew/contact/self_contact_form.hpp"
 #include "sinew/fem/discretization.hpp"
 #include "sinew/fem/elastic_form.hpp"
@@ -108,17 +109,7 @@ TEST(SelfContactForm, GradientAndHessianMatchFiniteDifferencesWithTargetsFrozen)
   form.add_hessian(x, H);
   const Eigen::MatrixXd K(H.matrix());
   ASSERT_GT(g.norm(), 0.0);
-  const double eps = 1e-6;
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    Eigen::VectorXd xp = x, xm = x;
-    xp(i) += eps;
-    xm(i) -= eps;
-    EXPECT_NEAR((form.value(xp) - form.value(xm)) / (2 * eps), g(i), 1e-6 * (1.0 + std::abs(g(i))));
-    Eigen::VectorXd gp = Eigen::VectorXd::Zero(x.size()), gm = gp;
-    form.add_gradient(xp, gp);
-    form.add_gradient(xm, gm);
-    EXPECT_LE(((gp - gm) / (2 * eps) - K.col(i)).norm(), 1e-6 * (1.0 + K.col(i).norm()));
-  }
+  testing_support::expect_derivatives_match_per_entry(form, x, g, K);
   // PSD: k A_s I blocks.
   EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(K).eigenvalues().minCoeff(), -1e-12 * K.norm());
 }
