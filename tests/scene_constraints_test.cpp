@@ -49,7 +49,17 @@ TEST(SceneConstraints, DefaultsAndValues) {
   EXPECT_EQ(c.step.energy_limit->max_energy, 0.002);
   EXPECT_EQ(c.step.energy_limit->jacobian, JacobianKind::Exact);
   EXPECT_EQ(c.contact_margin, 0.01);
+  EXPECT_TRUE(c.step.reuse.enabled);
   EXPECT_FALSE(parse_scene(patched({{"constraints", nullptr}}), "s.json").constraints.has_value());
+  const Scene t = parse_scene(
+      patched({{"constraints",
+                {{"factorization",
+                  {{"reuse", false}, {"max_cg_iterations", 5}, {"cg_tolerance", 1e-9}, {"column_reuse_tolerance", 0}}}}}}),
+      "s.json");
+  EXPECT_FALSE(t.constraints->step.reuse.enabled);
+  EXPECT_EQ(t.constraints->step.reuse.max_cg_iterations, 5);
+  EXPECT_EQ(t.constraints->step.reuse.cg_tolerance, 1e-9);
+  EXPECT_EQ(t.constraints->step.reuse.column_reuse_tolerance, 0.0);
 }
 
 TEST(SceneConstraints, BadInputIsRejectedWithFileAndPath) {
@@ -71,6 +81,16 @@ TEST(SceneConstraints, BadInputIsRejectedWithFileAndPath) {
   expect_contains(parse_error(patched({{"constraints", {{"sqp", {{"tolerance", 1}}}}}})), {"/constraints/sqp/tolerance"});
   expect_contains(parse_error(patched({{"constraints", {{"energy_limit", {{"activation", 2}}}}}})),
                   {"/constraints/energy_limit/activation", "[0, 1]"});
+  expect_contains(parse_error(patched({{"constraints", {{"factorization", {{"reuse", "yes"}}}}}})),
+                  {"/constraints/factorization/reuse"});
+  expect_contains(parse_error(patched({{"constraints", {{"factorization", {{"max_cg_iterations", 0}}}}}})),
+                  {"/constraints/factorization/max_cg_iterations"});
+  expect_contains(parse_error(patched({{"constraints", {{"factorization", {{"cg_tolerance", 2}}}}}})),
+                  {"/constraints/factorization/cg_tolerance", "below 1"});
+  expect_contains(parse_error(patched({{"constraints", {{"factorization", {{"column_reuse_tolerance", -1}}}}}})),
+                  {"/constraints/factorization/column_reuse_tolerance", "[0, 1)"});
+  expect_contains(parse_error(patched({{"constraints", {{"factorization", {{"refactor_every", 3}}}}}})),
+                  {"/constraints/factorization/refactor_every"});
 }
 
 TEST(SceneConstraints, OneConfigFormatTimeSteppingFromDynamicsContactFromObstacles) {

@@ -2,9 +2,15 @@
 
 #include <Eigen/CholmodSupport>
 #include <chrono>
+#include <cmath>
 #include <map>
+#include <unordered_map>
 
 #include "sinew/core/error.hpp"
+#include "sinew/solver/linear_operator.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace sinew {
 namespace {
@@ -36,10 +42,44 @@ std::pair<Vec3, Vec3> tangents(const Vec3& n) {
 
 }  // namespace
 
+// Two lagged factorisations: one of a backward-Euler matrix A (first SQP iteration) and one of
+// a Lagrangian Hessian H (later iterations; A with the limit-active elements stiffened). Each
+// preconditions the matrices of its kind, which change slowly from step to step, while A and H
+// differ much more from each other.
 struct ConstrainedStepper::Factorization {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;         // A
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> lagrangian;  // H of the SQP model
-  bool analysed = false, lagrangian_analysed = false;
+ struct Slot {
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;  // of A or H, this or an earlier step
+  bool analysed = false, valid = false;
+  // CG iterations that cost about one factorisation: flops of the factorisation over the flops
+  // of one CG iteration (a triangular solve pair, 4 nnz(L), and a product with A, 2 nnz(A)).
+  double cg_iterations_per_factorization = 0.0;
+  int cg_iterations_since = 0;  // spent with this factorisation
+  // Columns P^-1 J_i^T of this factorisation by constraint key, with the Jacobian they are for.
+  struct Column {
+    std::vector<std::pair<Eigen::Index, double>> jacobian;
+    Eigen::VectorXd values;
+  };
+  std::unordered_map<long, Column> columns;
+
+  // Numeric factorisation with the symbolic analysis kept; every matrix factorised here has the
+  // pattern of A (all element blocks plus the diagonal), so one analysis serves them all.
+  void factorize(const Eigen::SparseMatrix<double>& M) {
+    if (!analysed) llt.analyzePattern(M);
+    analysed = true;
+    llt.factorize(M);
+    if (llt.info() != Eigen::Success) {
+      llt.analyzePattern(M);  // the pattern can change when the warped stiffness cancels entries
+      llt.factorize(M);
+    }
+    valid = llt.info() == Eigen::Success;
+    if (!valid) throw Error("backward-Euler or SQP matrix is not positive definite", "constrained stepper");
+    const cholmod_common& c = llt.cholmod();
+    cg_iterations_per_factorization = c.fl / (4.0 * c.lnz + 2.0 * static_cast<double>(M.nonZeros()));
+    cg_iterations_since = 0;
+    columns.clear();
+  }
+ };
+  Slot backward_euler, lagrangian;
 };
 
 ConstrainedStepper::ConstrainedStepper(std::shared_ptr<const ElementEnergyModel> model, Eigen::VectorXd masses,
@@ -75,41 +115,101 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
   const Eigen::VectorXd x0 = x;
 
   // ---- unconstrained backward Euler (Eq. 19): (M + h^2 K) v* = M v0 + h f(x0)
-  auto t = Clock::now();
-  Eigen::SparseMatrix<double> A = h * h * model_->stiffness(x0);
+  Eigen::SparseMatrix<double> A = model_->stiffness(x0);
+  A *= h * h;
   Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * (model_->forces(x0) + external_);
+  // A = M + h^2 K in K's own storage: rows and columns of fixed DOFs become identity rows.
+  Eigen::Index diagonal_found = 0;
   for (Eigen::Index k = 0; k < A.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
       if (fixed_[it.row()] || fixed_[it.col()]) it.valueRef() = 0.0;
-  Eigen::SparseMatrix<double> Mdiag(n, n);
-  {
-    std::vector<Eigen::Triplet<double>> d;
-    for (Eigen::Index i = 0; i < n; ++i) d.emplace_back(i, i, fixed_[i] ? 1.0 : mass_dofs_(i));
-    Mdiag.setFromTriplets(d.begin(), d.end());
-  }
-  A += Mdiag;
+      if (it.row() == it.col()) {
+        it.valueRef() += fixed_[k] ? 1.0 : mass_dofs_(k);
+        ++diagonal_found;
+      }
+    }
+  if (diagonal_found != n) throw Error("a vertex belongs to no element", "constrained stepper");
   for (Eigen::Index i = 0; i < n; ++i)
     if (fixed_[i]) b(i) = 0.0;
-  if (!factor_->analysed) {
-    factor_->llt.analyzePattern(A);
-    factor_->analysed = true;
-  }
-  factor_->llt.factorize(A);
-  if (factor_->llt.info() != Eigen::Success) {
-    factor_->llt.analyzePattern(A);  // the pattern can change when the warped stiffness cancels entries
-    factor_->llt.factorize(A);
-    if (factor_->llt.info() != Eigen::Success) throw Error("backward-Euler matrix is not positive definite", "constrained stepper");
-  }
-  const Eigen::VectorXd v_star = factor_->llt.solve(b);
-  report.factor_seconds = since(t);
+  const FactorizationReuse& reuse = settings_.reuse;
+
+  // The current matrix (A, then H in later SQP iterations) and whether the factorisation is of it.
+  const Eigen::SparseMatrix<double>* current = &A;
+  Factorization::Slot* F = &factor_->backward_euler;
+  bool exact = false;
+  auto refactor = [&] {
+    const auto t_factor = Clock::now();
+    F->factorize(*current);
+    exact = true;
+    ++report.factorizations;
+    report.factor_seconds += since(t_factor);
+  };
+  // out = current^-1 r: directly when the factorisation is of the current matrix, else CG
+  // preconditioned by the (lagged) factorisation, starting from `out` when `guess` is set;
+  // refactorises when CG needs too many iterations.
+  auto solve = [&](const Eigen::VectorXd& r, Eigen::VectorXd& out, bool guess) {
+    const auto t_solve = Clock::now();
+    struct Stop {
+      ConstrainedStepReport& report;
+      Clock::time_point t;
+      ~Stop() { report.solve_seconds += since(t); }
+    } stop{report, t_solve};
+    if (!exact) {
+      const double r_norm = r.norm();
+      if (!guess) out.setZero(n);
+      if (r_norm == 0.0) {
+        out.setZero(n);
+        return;
+      }
+      const SparseOperator op(*current);
+      Eigen::VectorXd res = r, Ap(n);
+      if (guess) {
+        op.apply(out, Ap);
+        res -= Ap;
+      }
+      if (res.norm() <= reuse.cg_tolerance * r_norm) return;
+      Eigen::VectorXd z = F->llt.solve(res), p = z;
+      double rz = res.dot(z);
+      for (int it = 0; it < reuse.max_cg_iterations; ++it) {
+        op.apply(p, Ap);
+        const double alpha = rz / p.dot(Ap);
+        out += alpha * p;
+        res -= alpha * Ap;
+        ++report.cg_iterations;
+        ++F->cg_iterations_since;
+        if (res.norm() <= reuse.cg_tolerance * r_norm) return;
+        z = F->llt.solve(res);
+        const double rz_next = res.dot(z);
+        p = z + (rz_next / rz) * p;
+        rz = rz_next;
+      }
+      refactor();  // the lagged factorisation no longer preconditions well
+    }
+    out = F->llt.solve(r);
+  };
+
+  // A stale factorisation is refreshed once the CG work it caused costs about a factorisation.
+  auto use = [&](const Eigen::SparseMatrix<double>& M, Factorization::Slot& slot) {
+    current = &M;
+    F = &slot;
+    exact = false;
+    if (!reuse.enabled || !F->valid || F->cg_iterations_since >= F->cg_iterations_per_factorization) refactor();
+  };
+  use(A, factor_->backward_euler);
+  Eigen::VectorXd v_star;
+  solve(b, v_star, false);
 
   // ---- SQP: linearise at x_k = x0 + h v_k and solve the subproblem
   //   min 1/2 (v - v*)^T A (v - v*)  s.t.  C(x_k) / h + J_k (v - v_k) >= 0 (+ friction),
-  // whose Newton step from v_k is v_k - H^-1 g + H^-1 J^T lambda with g = A (v_k - v*).
+  // whose solution is v = v_k + H^-1 (J^T lambda - g) with g = A (v_k - v*).
   const std::optional<EnergyLimit>& limit = settings_.energy_limit;
   Eigen::VectorXd v_k = v_star;
-  std::map<long, double> warm;  // multipliers of the previous LCP by constraint key
+  // Multipliers of the previous LCP by constraint key; at the first SQP iteration those of the
+  // previous step, which also give the first iteration's Lagrangian Hessian (SQP with initial
+  // multiplier estimates: the converged step is the same, it is reached in fewer iterations).
+  std::map<long, double> warm = multipliers_;
   std::map<long, char> ever_active;
+  Eigen::SparseMatrix<double> H;
   auto t_lcp = Clock::now();
   for (int k = 0;; ++k) {
     const Eigen::VectorXd x_k = x0 + h * v_k;
@@ -117,13 +217,29 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
     // unilateral rows, the current sliding velocity J v_k - t . v_obstacle for friction rows.
     std::vector<Row> rows;
     double energy_violation = 0.0, max_energy = 0.0;
+    // Element energies, and the Jacobians of the elements that get a row, in parallel.
+    std::vector<double> energies(static_cast<size_t>(disc.num_elements()));
+    tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, disc.num_elements(), 32), [&](const auto& range) {
+      for (Eigen::Index e = range.begin(); e < range.end(); ++e)
+        energies[static_cast<size_t>(e)] = model_->element_energy(e, x_k);
+    });
+    std::vector<Eigen::Index> limited;
     for (Eigen::Index e = 0; e < disc.num_elements(); ++e) {
-      const double U = model_->element_energy(e, x_k);
+      const double U = energies[static_cast<size_t>(e)];
       max_energy = std::max(max_energy, U);
       if (!limit) continue;
       energy_violation = std::max(energy_violation, U / limit->max_energy - 1.0);
-      if (U < (1.0 - settings_.activation) * limit->max_energy && !ever_active.count(e)) continue;
-      const Eigen::VectorXd jac = energy_constraint_jacobian(*model_, e, x_k, *limit);
+      if (U >= (1.0 - settings_.activation) * limit->max_energy || ever_active.count(e)) limited.push_back(e);
+    }
+    std::vector<Eigen::VectorXd> jacobians(limited.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, limited.size(), 4), [&](const auto& range) {
+      for (size_t i = range.begin(); i < range.end(); ++i)
+        jacobians[i] = energy_constraint_jacobian(*model_, limited[i], x_k, *limit);
+    });
+    for (size_t l = 0; l < limited.size(); ++l) {
+      const Eigen::Index e = limited[l];
+      const double U = energies[static_cast<size_t>(e)];
+      const Eigen::VectorXd& jac = jacobians[l];
       Row r;
       r.energy = true;
       r.key = e;
@@ -172,13 +288,13 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
     if (satisfied || k >= settings_.sqp_max_iterations) {
       report.converged = satisfied;
       v = v_k;
+      multipliers_ = k > 0 ? warm : std::map<long, double>{};
       break;
     }
 
     // ---- quadratic model: H = A plus the curvature of the energy constraints with lambda > 0
-    auto* solver = &factor_->llt;
-    if (limit && k > 0) {
-      std::vector<Eigen::Triplet<double>> extra;
+    std::vector<Eigen::Triplet<double>> extra;
+    if (limit) {
       for (const auto& [key, lambda_e] : warm) {
         if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
         const Eigen::MatrixXd He = model_->element_energy_hessian(key, x_k) * (h * lambda_e / limit->max_energy);
@@ -190,49 +306,126 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
                 if (!fixed_[r] && !fixed_[c]) extra.emplace_back(r, c, He(3 * a + i, 3 * o + j));
               }
       }
-      if (!extra.empty()) {
-        Eigen::SparseMatrix<double> E(n, n);
-        E.setFromTriplets(extra.begin(), extra.end());
-        const Eigen::SparseMatrix<double> H = A + E;  // same pattern: A holds every element block
-        if (!factor_->lagrangian_analysed) factor_->lagrangian.analyzePattern(H);
-        factor_->lagrangian_analysed = true;
-        factor_->lagrangian.factorize(H);
-        if (factor_->lagrangian.info() != Eigen::Success) {
-          factor_->lagrangian.analyzePattern(H);
-          factor_->lagrangian.factorize(H);
-        }
-        if (factor_->lagrangian.info() != Eigen::Success)
-          throw Error("SQP Lagrangian Hessian is not positive definite", "constrained stepper");
-        solver = &factor_->lagrangian;
-      }
     }
-    const Eigen::VectorXd d0 = k == 0 ? Eigen::VectorXd::Zero(n) : Eigen::VectorXd(solver->solve(A * (v_k - v_star)));
+    if (!extra.empty()) {
+      H = A;  // same pattern: A holds every element block
+      for (const Eigen::Triplet<double>& t : extra) H.coeffRef(t.row(), t.col()) += t.value();
+      use(H, factor_->lagrangian);
+    } else if (current != &A) {
+      use(A, factor_->backward_euler);
+    }
+    const Eigen::VectorXd g = k == 0 ? Eigen::VectorXd::Zero(n) : Eigen::VectorXd(A * (v_k - v_star));
 
-    // ---- LCP (Eq. 23): W = J H^-1 J^T with the columns H^-1 J^T from the one factorisation
+    // ---- LCP (Eq. 23) with W = J H^-1 J^T
     const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
-    Eigen::VectorXd q(m), lambda(m);
+    Eigen::VectorXd offset(m), lambda(m);
     std::vector<LcpRow> bounds(m);
     std::vector<Eigen::Triplet<double>> entries;
     for (Eigen::Index i = 0; i < m; ++i) {
       for (const auto& [dof, value] : rows[i].jacobian) entries.emplace_back(i, dof, value);
-      q(i) = rows[i].offset - row_dot(rows[i], d0);
+      offset(i) = rows[i].offset;
       bounds[i] = rows[i].bounds;
       const auto w = warm.find(rows[i].key);
       lambda(i) = w == warm.end() ? 0.0 : w->second;
     }
     Eigen::SparseMatrix<double, Eigen::RowMajor> J(m, n);
     J.setFromTriplets(entries.begin(), entries.end());
-    const Eigen::MatrixXd Jt = Eigen::MatrixXd(J.transpose());
-    const Eigen::MatrixXd Y = solver->solve(Jt);  // H^-1 J^T: one multi-RHS solve
-    // W = J Y as a sparse-times-dense product: each row of J has at most 24 entries, so this is
-    // O(nnz(J) m) with contiguous access to Y's rows' columns, not m^2 scattered row dots.
-    Eigen::MatrixXd W = J * Y;
-    for (Eigen::Index i = 0; i < m; ++i) W(i, i) = std::max(W(i, i), 1e-14 * W.diagonal().cwiseAbs().maxCoeff());
-    const PgsReport pgs = solve_pgs(W, q, bounds, lambda, settings_.pgs);
+    // W~ = J~ P^-1 J~^T from the factorisation at hand. Columns P^-1 J_i^T are cached per
+    // constraint with the Jacobian J~_i they were computed for and reused while J_i stays close
+    // (contact rows against a fixed normal do not change at all); new ones come from one
+    // multi-RHS solve. W~ is exact when the factorisation is of H and every J~_i = J_i.
+    Eigen::MatrixXd W;
+    bool w_exact = false;
+    auto form_w = [&](bool reuse_columns) {
+      const auto t_w = Clock::now();
+      std::vector<Eigen::Index> missing;
+      w_exact = exact;
+      for (Eigen::Index i = 0; i < m; ++i) {
+        const auto it = F->columns.find(rows[i].key);
+        if (it != F->columns.end() && it->second.jacobian.size() == rows[i].jacobian.size()) {
+          double diff = 0.0, norm = 0.0;
+          bool same_dofs = true;
+          for (std::size_t j = 0; j < rows[i].jacobian.size(); ++j) {
+            same_dofs = same_dofs && it->second.jacobian[j].first == rows[i].jacobian[j].first;
+            diff += std::pow(it->second.jacobian[j].second - rows[i].jacobian[j].second, 2);
+            norm += std::pow(rows[i].jacobian[j].second, 2);
+          }
+          if (same_dofs && diff == 0.0) continue;
+          if (same_dofs && reuse_columns && diff <= std::pow(reuse.column_reuse_tolerance, 2) * norm) {
+            w_exact = false;
+            continue;
+          }
+        }
+        missing.push_back(i);
+      }
+      if (!missing.empty()) {
+        Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, static_cast<Eigen::Index>(missing.size()));
+        for (std::size_t c = 0; c < missing.size(); ++c)
+          for (const auto& [dof, value] : rows[missing[c]].jacobian) rhs(dof, static_cast<Eigen::Index>(c)) = value;
+        const Eigen::MatrixXd cols = F->llt.solve(rhs);
+        for (std::size_t c = 0; c < missing.size(); ++c)
+          F->columns[rows[missing[c]].key] = {rows[missing[c]].jacobian, cols.col(static_cast<Eigen::Index>(c))};
+      }
+      std::vector<Eigen::Triplet<double>> cached;
+      Eigen::MatrixXd Y(n, m);
+      for (Eigen::Index i = 0; i < m; ++i) {
+        const Factorization::Slot::Column& col = F->columns.at(rows[i].key);
+        for (const auto& [dof, value] : col.jacobian) cached.emplace_back(i, dof, value);
+        Y.col(i) = col.values;
+      }
+      Eigen::SparseMatrix<double, Eigen::RowMajor> Jc(m, n);
+      Jc.setFromTriplets(cached.begin(), cached.end());
+      W = Jc * Y;  // sparse-times-dense: O(nnz(J) m)
+      for (Eigen::Index i = 0; i < m; ++i) W(i, i) = std::max(W(i, i), 1e-14 * W.diagonal().cwiseAbs().maxCoeff());
+      // Bound the cache (n doubles per column) on large meshes.
+      if (static_cast<double>(F->columns.size()) * static_cast<double>(n) > 3.2e7) F->columns.clear();
+      report.w_seconds += since(t_w);
+    };
+    form_w(true);
+    // Splitting iteration: w(lambda) = offset + J u(lambda), u = H^-1 (J^T lambda - g) exactly;
+    // PGS on W~ with q~ = w(lambda_s) - W~ lambda_s. With an exact W~ one PGS solve is the answer.
+    // It stops when the exact LCP residual is below 1 % of the SQP's constraint tolerances
+    // (as velocities: a residual r moves the end-of-step constraint by h r), or the PGS
+    // tolerance if that is looser; the PGS inner solves use half of it.
+    const double split_tolerance = std::max(
+        settings_.pgs.tolerance, 0.01 * std::min(settings_.contact_tolerance, settings_.energy_tolerance) / h);
+    PgsSettings inner = settings_.pgs;
+    inner.tolerance = 0.5 * split_tolerance;
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(n), w(m);
+    double residual = 0.0, previous_residual = 0.0;
+    bool pgs_on_exact_w = false;
+    for (int s = 0;; ++s) {
+      const bool was_exact = exact;
+      const int cg_before = report.cg_iterations;
+      solve(Eigen::VectorXd(J.transpose() * lambda) - g, u, s > 0);
+      const int cg_this_split = report.cg_iterations - cg_before;
+      if (exact && !was_exact) form_w(false);  // CG gave up and H was refactorised: W is exact now
+      w = offset + J * u;
+      residual = lcp_residual(W, w - W * lambda, bounds, lambda);
+      if (residual <= split_tolerance || pgs_on_exact_w) break;
+      // Give up on a slow splitting (refactorise and form W exactly) when the sweeps still
+      // needed, extrapolated from the last contraction, would cost more CG than a factorisation.
+      bool slow = s >= reuse.max_splitting_iterations;
+      if (!slow && !exact && s >= 2) {
+        const double rate = residual / previous_residual;
+        const double remaining = rate >= 1.0 ? 1e9 : std::log(split_tolerance / residual) / std::log(rate);
+        slow = remaining * std::max(cg_this_split, 1) > F->cg_iterations_per_factorization;
+      }
+      previous_residual = residual;
+      if (slow) {
+        if (!exact) refactor();
+        form_w(false);
+      }
+      pgs_on_exact_w = w_exact;
+      const auto t_pgs = Clock::now();
+      const PgsReport pgs = solve_pgs(W, w - W * lambda, bounds, lambda, inner);
+      report.pgs_seconds += since(t_pgs);
+      ++report.splitting_iterations;
+      report.pgs_iterations += pgs.iterations;
+      report.pgs_unconverged += pgs.converged ? 0 : 1;
+    }
     report.sqp_iterations = k + 1;
-    report.pgs_iterations += pgs.iterations;
-    report.pgs_residual = pgs.residual;
-    report.pgs_unconverged += pgs.converged ? 0 : 1;
+    report.pgs_residual = residual;
     report.active_energy = report.active_contacts = 0;
     warm.clear();
     for (Eigen::Index i = 0; i < m; ++i) {
@@ -245,7 +438,7 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
         ++report.active_contacts;
       }
     }
-    v_k = v_k - d0 + Y * lambda;  // Eq. 21 for k = 0
+    v_k += u;  // Eq. 21 for k = 0
   }
   report.lcp_seconds = since(t_lcp);
   x = x0 + h * v;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "sinew/core/error.hpp"
 #include "sinew/core/svd.hpp"
@@ -133,30 +135,39 @@ Eigen::MatrixXd CorotationalHex::element_energy_hessian(Eigen::Index e, const Ei
   return H;
 }
 
+// Element terms are computed in parallel into per-element buffers and scattered serially, so
+// the sums are the same whatever the thread count.
 Eigen::VectorXd CorotationalHex::forces(const Eigen::VectorXd& x) const {
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;
+  std::vector<Eigen::Matrix<double, 24, 1>> g(static_cast<size_t>(d.num_elements()));
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, d.num_elements(), 32), [&](const auto& range) {
+    for (Eigen::Index e = range.begin(); e < range.end(); ++e)
+      g[static_cast<size_t>(e)] = element_energy_gradient(e, x, JacobianKind::Warped);
+  });
   Eigen::VectorXd f = Eigen::VectorXd::Zero(x.size());
-  for (Eigen::Index e = 0; e < d.num_elements(); ++e) {
-    const Eigen::VectorXd g = element_energy_gradient(e, x, JacobianKind::Warped);
-    for (int a = 0; a < 8; ++a) f.segment<3>(3 * elements(e, a)) -= g.segment<3>(3 * a);
-  }
+  for (Eigen::Index e = 0; e < d.num_elements(); ++e)
+    for (int a = 0; a < 8; ++a) f.segment<3>(3 * elements(e, a)) -= g[static_cast<size_t>(e)].segment<3>(3 * a);
   return f;
 }
 
 Eigen::SparseMatrix<double> CorotationalHex::stiffness(const Eigen::VectorXd& x) const {
   const Discretization& d = *disc_;
+  std::vector<Eigen::Matrix<double, 24, 24>> blocks(static_cast<size_t>(d.num_elements()));
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, d.num_elements(), 16), [&](const auto& range) {
+    for (Eigen::Index e = range.begin(); e < range.end(); ++e) {
+      const Mat3 R = rotation(e, x);
+      Eigen::Matrix<double, 24, 24>& B = blocks[static_cast<size_t>(e)];
+      for (int b = 0; b < 8; ++b)
+        for (int a = 0; a < 8; ++a) B.block<3, 3>(3 * a, 3 * b) = R * K_[e].block<3, 3>(3 * a, 3 * b) * R.transpose();
+    }
+  });
   Eigen::SparseMatrix<double> K = pattern_;
   double* values = K.valuePtr();
   for (Eigen::Index e = 0; e < d.num_elements(); ++e) {
-    const Mat3 R = rotation(e, x);
     const std::vector<int>& slot = slots_[e];
-    for (int b = 0; b < 8; ++b)
-      for (int a = 0; a < 8; ++a) {
-        const Mat3 B = R * K_[e].block<3, 3>(3 * a, 3 * b) * R.transpose();
-        for (int j = 0; j < 3; ++j)
-          for (int i = 0; i < 3; ++i) values[slot[(3 * b + j) * 24 + 3 * a + i]] += B(i, j);
-      }
+    const double* B = blocks[static_cast<size_t>(e)].data();  // column-major 24 x 24, as slot is indexed
+    for (int k = 0; k < 576; ++k) values[slot[k]] += B[k];
   }
   return K;
 }

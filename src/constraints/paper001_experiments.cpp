@@ -17,6 +17,20 @@ void Totals::add(const ConstrainedStepReport& r) {
   max_active_energy = std::max(max_active_energy, r.active_energy);
   max_active_contacts = std::max(max_active_contacts, r.active_contacts);
   seconds += r.seconds;
+  factorizations += r.factorizations;
+  cg_iterations += r.cg_iterations;
+  splitting_iterations += r.splitting_iterations;
+  if (r.active_energy + r.active_contacts > 0) {
+    ++active_steps;
+    active_rows += r.active_energy + r.active_contacts;
+    active_energy_rows += r.active_energy;
+    active_seconds += r.seconds;
+  }
+  factor_seconds += r.factor_seconds;
+  lcp_seconds += r.lcp_seconds;
+  solve_seconds += r.solve_seconds;
+  w_seconds += r.w_seconds;
+  pgs_seconds += r.pgs_seconds;
   max_energy_violation = std::max(max_energy_violation, r.energy_violation);
   max_element_energy = std::max(max_element_energy, r.max_element_energy);
 }

@@ -22,7 +22,7 @@ using Clock = std::chrono::steady_clock;
 // What one frame (steps_per_frame steps) did, for summary.json.
 struct ConstrainedFrame {
   int steps = 0, sqp_iterations = 0, max_sqp_iterations = 0, pgs_iterations = 0;
-  int active_energy = 0, active_contacts = 0;
+  int active_energy = 0, active_contacts = 0, factorizations = 0, cg_iterations = 0, splitting_iterations = 0;
   double pgs_residual = 0.0, energy_violation = 0.0, penetration = 0.0, max_element_energy = 0.0;
   double elastic_energy = 0.0, kinetic_energy = 0.0;
   void add(const ConstrainedStepReport& r) {
@@ -30,6 +30,9 @@ struct ConstrainedFrame {
     sqp_iterations += r.sqp_iterations;
     max_sqp_iterations = std::max(max_sqp_iterations, r.sqp_iterations);
     pgs_iterations += r.pgs_iterations;
+    factorizations += r.factorizations;
+    cg_iterations += r.cg_iterations;
+    splitting_iterations += r.splitting_iterations;
     active_energy = std::max(active_energy, r.active_energy);
     active_contacts = std::max(active_contacts, r.active_contacts);
     pgs_residual = std::max(pgs_residual, r.pgs_residual);
@@ -48,6 +51,9 @@ nlohmann::json frame_json(const FrameRecord& r, const ConstrainedFrame& c, doubl
           {"max_sqp_iterations_per_step", c.max_sqp_iterations},
           {"pgs_iterations", c.pgs_iterations},
           {"max_pgs_residual", c.pgs_residual},
+          {"factorizations", c.factorizations},
+          {"cg_iterations", c.cg_iterations},
+          {"splitting_iterations", c.splitting_iterations},
           {"max_energy_violation", c.energy_violation},
           {"max_penetration", c.penetration},
           {"max_active_energy_constraints", c.active_energy},

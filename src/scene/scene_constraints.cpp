@@ -13,7 +13,7 @@ ConstraintsSpec parse_constraints(JsonObject o) {
                                                        {"initial_velocity", "dynamics.initial_velocity"}};
   for (const auto& [key, where] : moved)
     if (o.has(key)) o.fail(key, fmt::format("not a constraints setting: use {}", where));
-  o.allow({"model", "energy_limit", "contact", "pgs", "sqp"});
+  o.allow({"model", "energy_limit", "contact", "pgs", "sqp", "factorization"});
   ConstraintsSpec spec;
   spec.model = o.choice("model", {"corotational", "material"}, "corotational");
   if (o.has("energy_limit")) {
@@ -53,6 +53,19 @@ ConstraintsSpec parse_constraints(JsonObject o) {
     s.allow({"iterations"});
     spec.step.sqp_max_iterations = s.integer("iterations", 1, spec.step.sqp_max_iterations);
     s.finish();
+  }
+  if (o.has("factorization")) {
+    JsonObject f = o.object("factorization");
+    f.allow({"reuse", "max_cg_iterations", "cg_tolerance", "column_reuse_tolerance"});
+    FactorizationReuse& r = spec.step.reuse;
+    r.enabled = f.boolean("reuse", r.enabled);
+    r.max_cg_iterations = f.integer("max_cg_iterations", 1, r.max_cg_iterations);
+    r.cg_tolerance = f.positive("cg_tolerance", r.cg_tolerance);
+    if (!(r.cg_tolerance < 1.0)) f.fail("cg_tolerance", fmt::format("must be below 1, got {}", r.cg_tolerance));
+    r.column_reuse_tolerance = f.number("column_reuse_tolerance", r.column_reuse_tolerance);
+    if (!(r.column_reuse_tolerance >= 0.0 && r.column_reuse_tolerance < 1.0))
+      f.fail("column_reuse_tolerance", fmt::format("must be in [0, 1), got {}", r.column_reuse_tolerance));
+    f.finish();
   }
   o.finish();
   return spec;
