@@ -8,6 +8,7 @@
 
 #include "sinew/core/error.hpp"
 #include "sinew/solver/linear_operator.hpp"
+#include "sinew/solver/serial_openmp.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -52,6 +53,9 @@ struct ConstrainedStepper::Factorization {
   bool analysed = false, valid = false;
   // CG iterations that cost about one factorisation: flops of the factorisation over the flops
   // of one CG iteration (a triangular solve pair, 4 nnz(L), and a product with A, 2 nnz(A)).
+  // Per flop the factorisation's dense supernode updates run ~3x faster than the solves, but a
+  // refactorisation also discards the cached LCP columns; flops alone measured best (budget
+  // x1 against x0.5 and x3 on the paper-size benchmark).
   double cg_iterations_per_factorization = 0.0;
   int cg_iterations_since = 0;  // spent with this factorisation
   // Columns P^-1 J_i^T of this factorisation by constraint key, with the Jacobian they are for.
@@ -107,6 +111,7 @@ ConstrainedStepper::~ConstrainedStepper() = default;
 
 ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
   const auto t_step = Clock::now();
+  const SerialOpenMpScope serial_cholmod;
   ConstrainedStepReport report;
   const double h = settings_.time_step;
   const Discretization& disc = model_->discretization();

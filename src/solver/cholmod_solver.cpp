@@ -5,6 +5,7 @@
 
 #include "sinew/core/error.hpp"
 #include "sinew/solver/linear_solver.hpp"
+#include "sinew/solver/serial_openmp.hpp"
 
 namespace sinew {
 namespace {
@@ -17,6 +18,7 @@ class CholmodSolver final : public LinearSolver {
                           double) override {
     if (!op.matrix()) throw Error("CHOLMOD needs an assembled matrix; use pcg with a matrix-free operator", "solver.linear");
     const Eigen::SparseMatrix<double>& A = *op.matrix();
+    const SerialOpenMpScope serial_cholmod;
     if (!same_pattern(A)) {
       llt_.analyzePattern(A);
       remember_pattern(A);
