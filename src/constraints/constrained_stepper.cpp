@@ -120,9 +120,11 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
   const Eigen::VectorXd x0 = x;
 
   // ---- unconstrained backward Euler (Eq. 19): (M + h^2 K) v* = M v0 + h f(x0)
-  Eigen::SparseMatrix<double> A = model_->stiffness(x0);
+  Eigen::SparseMatrix<double> A;
+  Eigen::VectorXd f0;
+  model_->forces_and_stiffness(x0, f0, A);
   A *= h * h;
-  Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * (model_->forces(x0) + external_);
+  Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * (f0 + external_);
   // A = M + h^2 K in K's own storage: rows and columns of fixed DOFs become identity rows.
   Eigen::Index diagonal_found = 0;
   for (Eigen::Index k = 0; k < A.outerSize(); ++k)

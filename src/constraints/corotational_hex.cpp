@@ -152,24 +152,43 @@ Eigen::VectorXd CorotationalHex::forces(const Eigen::VectorXd& x) const {
 }
 
 Eigen::SparseMatrix<double> CorotationalHex::stiffness(const Eigen::VectorXd& x) const {
+  Eigen::VectorXd f;
+  Eigen::SparseMatrix<double> K;
+  forces_and_stiffness(x, f, K);
+  return K;
+}
+
+void CorotationalHex::forces_and_stiffness(const Eigen::VectorXd& x, Eigen::VectorXd& f,
+                                           Eigen::SparseMatrix<double>& K) const {
   const Discretization& d = *disc_;
+  const auto& elements = d.mesh().elements;
   std::vector<Eigen::Matrix<double, 24, 24>> blocks(static_cast<size_t>(d.num_elements()));
+  std::vector<Eigen::Matrix<double, 24, 1>> forces(static_cast<size_t>(d.num_elements()));
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, d.num_elements(), 16), [&](const auto& range) {
     for (Eigen::Index e = range.begin(); e < range.end(); ++e) {
-      const Mat3 R = rotation(e, x);
+      const Eigen::Matrix3Xd xe = d.element_positions(e, x);
+      const Eigen::Matrix3Xd Xe = d.element_positions(e, rest_);
+      const Mat3 R = polar_rotation(tet_edges(xe) * tet_rest_inverse_[e]);
+      const Eigen::Matrix<double, 24, 24> Ke = K_[e];
+      Eigen::Matrix<double, 24, 1> disp;
+      for (int a = 0; a < 8; ++a) disp.segment<3>(3 * a) = R.transpose() * xe.col(a) - Xe.col(a);
+      const Eigen::Matrix<double, 24, 1> fe = Ke * disp;  // rest-frame forces (Eq. 17, R fixed)
       Eigen::Matrix<double, 24, 24>& B = blocks[static_cast<size_t>(e)];
-      for (int b = 0; b < 8; ++b)
-        for (int a = 0; a < 8; ++a) B.block<3, 3>(3 * a, 3 * b) = R * K_[e].block<3, 3>(3 * a, 3 * b) * R.transpose();
+      for (int a = 0; a < 8; ++a) {
+        forces[static_cast<size_t>(e)].segment<3>(3 * a) = R * fe.segment<3>(3 * a);
+        for (int b = 0; b < 8; ++b) B.block<3, 3>(3 * a, 3 * b) = R * Ke.block<3, 3>(3 * a, 3 * b) * R.transpose();
+      }
     }
   });
-  Eigen::SparseMatrix<double> K = pattern_;
+  f = Eigen::VectorXd::Zero(x.size());
+  K = pattern_;
   double* values = K.valuePtr();
   for (Eigen::Index e = 0; e < d.num_elements(); ++e) {
+    for (int a = 0; a < 8; ++a) f.segment<3>(3 * elements(e, a)) -= forces[static_cast<size_t>(e)].segment<3>(3 * a);
     const std::vector<int>& slot = slots_[e];
     const double* B = blocks[static_cast<size_t>(e)].data();  // column-major 24 x 24, as slot is indexed
     for (int k = 0; k < 576; ++k) values[slot[k]] += B[k];
   }
-  return K;
 }
 
 }  // namespace sinew

@@ -45,6 +45,8 @@ class CorotationalHex final : public ElementEnergyModel {
   // f = -sum_e R K_e (R^T x_e - X_e) and K = sum_e R K_e R^T (the usual warped stiffness).
   Eigen::VectorXd forces(const Eigen::VectorXd& x) const override;
   Eigen::SparseMatrix<double> stiffness(const Eigen::VectorXd& x) const override;
+  // One rotation per element for both (what a time step needs at its start).
+  void forces_and_stiffness(const Eigen::VectorXd& x, Eigen::VectorXd& f, Eigen::SparseMatrix<double>& K) const override;
 
  private:
   std::shared_ptr<const Discretization> disc_;

@@ -37,6 +37,11 @@ class ElementEnergyModel {
   // Internal elastic forces -dE/dx and a PSD approximation of d2E/dx2 (3V x 3V).
   virtual Eigen::VectorXd forces(const Eigen::VectorXd& x) const = 0;
   virtual Eigen::SparseMatrix<double> stiffness(const Eigen::VectorXd& x) const = 0;
+  // Both at once; a model may share work between them (the corotational element rotations).
+  virtual void forces_and_stiffness(const Eigen::VectorXd& x, Eigen::VectorXd& f, Eigen::SparseMatrix<double>& K) const {
+    f = forces(x);
+    K = stiffness(x);
+  }
 };
 
 }  // namespace sinew
