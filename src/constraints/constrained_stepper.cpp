@@ -341,7 +341,7 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
     // constraint with the Jacobian J~_i they were computed for and reused while J_i stays close
     // (contact rows against a fixed normal do not change at all); new ones come from one
     // multi-RHS solve. W~ is exact when the factorisation is of H and every J~_i = J_i.
-    Eigen::MatrixXd W;
+    Eigen::MatrixXd W, Y;  // W~ and its columns P^-1 J~^T
     bool w_exact = false;
     auto form_w = [&](bool reuse_columns) {
       const auto t_w = Clock::now();
@@ -374,7 +374,7 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
           F->columns[rows[missing[c]].key] = {rows[missing[c]].jacobian, cols.col(static_cast<Eigen::Index>(c))};
       }
       std::vector<Eigen::Triplet<double>> cached;
-      Eigen::MatrixXd Y(n, m);
+      Y.resize(n, m);
       for (Eigen::Index i = 0; i < m; ++i) {
         const Factorization::Slot::Column& col = F->columns.at(rows[i].key);
         for (const auto& [dof, value] : col.jacobian) cached.emplace_back(i, dof, value);
@@ -398,12 +398,15 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
         settings_.pgs.tolerance, 0.01 * std::min(settings_.contact_tolerance, settings_.energy_tolerance) / h);
     PgsSettings inner = settings_.pgs;
     inner.tolerance = 0.5 * split_tolerance;
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(n), w(m);
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(n), w(m), lambda_before = lambda;
     double residual = 0.0, previous_residual = 0.0;
     bool pgs_on_exact_w = false;
     for (int s = 0;; ++s) {
       const bool was_exact = exact;
       const int cg_before = report.cg_iterations;
+      // After a PGS solve, the change of multipliers moves u by about P^-1 J^T dlambda: with that
+      // as the starting guess CG only corrects for P != H.
+      if (s > 0) u.noalias() += Y * (lambda - lambda_before);
       solve(Eigen::VectorXd(J.transpose() * lambda) - g, u, s > 0);
       const int cg_this_split = report.cg_iterations - cg_before;
       if (exact && !was_exact) form_w(false);  // CG gave up and H was refactorised: W is exact now
@@ -425,6 +428,7 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
       }
       pgs_on_exact_w = w_exact;
       const auto t_pgs = Clock::now();
+      lambda_before = lambda;
       const PgsReport pgs = solve_pgs(W, w - W * lambda, bounds, lambda, inner);
       report.pgs_seconds += since(t_pgs);
       ++report.splitting_iterations;
