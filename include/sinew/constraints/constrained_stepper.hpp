@@ -39,7 +39,7 @@ struct FactorizationReuse {
   // nonzero counts, so the choice is deterministic), and in any step where one solve needs more
   // than `max_cg_iterations`.
   int max_cg_iterations = 12;
-  double cg_tolerance = 1e-7;         // relative residual of the preconditioned CG solves
+  double cg_tolerance = 1e-6;         // relative residual of the preconditioned CG solves
   int max_splitting_iterations = 30;  // LCP splitting sweeps before W is formed exactly
   // A column P^-1 J_i^T is kept while the factorisation lasts and reused while row i's Jacobian
   // stays within this relative distance of the one it was computed for (0: exact match only).
