@@ -1,13 +1,11 @@
 #include "sinew/constraints/constrained_stepper.hpp"
 
-#include <Eigen/CholmodSupport>
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <unordered_map>
 
+#include "sinew/constraints/lagged_factorization.hpp"
 #include "sinew/core/error.hpp"
-#include "sinew/solver/linear_operator.hpp"
 #include "sinew/solver/serial_openmp.hpp"
 
 #include <tbb/blocked_range.h>
@@ -48,42 +46,7 @@ std::pair<Vec3, Vec3> tangents(const Vec3& n) {
 // preconditions the matrices of its kind, which change slowly from step to step, while A and H
 // differ much more from each other.
 struct ConstrainedStepper::Factorization {
- struct Slot {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;  // of A or H, this or an earlier step
-  bool analysed = false, valid = false;
-  // CG iterations that cost about one factorisation: flops of the factorisation over the flops
-  // of one CG iteration (a triangular solve pair, 4 nnz(L), and a product with A, 2 nnz(A)).
-  // Per flop the factorisation's dense supernode updates run ~3x faster than the solves, but a
-  // refactorisation also discards the cached LCP columns; flops alone measured best (budget
-  // x1 against x0.5 and x3 on the paper-size benchmark).
-  double cg_iterations_per_factorization = 0.0;
-  int cg_iterations_since = 0;  // spent with this factorisation
-  // Columns P^-1 J_i^T of this factorisation by constraint key, with the Jacobian they are for.
-  struct Column {
-    std::vector<std::pair<Eigen::Index, double>> jacobian;
-    Eigen::VectorXd values;
-  };
-  std::unordered_map<long, Column> columns;
-
-  // Numeric factorisation with the symbolic analysis kept; every matrix factorised here has the
-  // pattern of A (all element blocks plus the diagonal), so one analysis serves them all.
-  void factorize(const Eigen::SparseMatrix<double>& M) {
-    if (!analysed) llt.analyzePattern(M);
-    analysed = true;
-    llt.factorize(M);
-    if (llt.info() != Eigen::Success) {
-      llt.analyzePattern(M);  // the pattern can change when the warped stiffness cancels entries
-      llt.factorize(M);
-    }
-    valid = llt.info() == Eigen::Success;
-    if (!valid) throw Error("backward-Euler or SQP matrix is not positive definite", "constrained stepper");
-    const cholmod_common& c = llt.cholmod();
-    cg_iterations_per_factorization = c.fl / (4.0 * c.lnz + 2.0 * static_cast<double>(M.nonZeros()));
-    cg_iterations_since = 0;
-    columns.clear();
-  }
- };
-  Slot backward_euler, lagrangian;
+  LaggedFactorization backward_euler, lagrangian;
 };
 
 ConstrainedStepper::ConstrainedStepper(std::shared_ptr<const ElementEnergyModel> model, Eigen::VectorXd masses,
@@ -140,68 +103,17 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
     if (fixed_[i]) b(i) = 0.0;
   const FactorizationReuse& reuse = settings_.reuse;
 
-  // The current matrix (A, then H in later SQP iterations) and whether the factorisation is of it.
+  // The matrix of the current SQP iteration (A, or H from the second on) and the lagged
+  // factorisation that solves with it.
   const Eigen::SparseMatrix<double>* current = &A;
-  Factorization::Slot* F = &factor_->backward_euler;
-  bool exact = false;
-  auto refactor = [&] {
-    const auto t_factor = Clock::now();
-    F->factorize(*current);
-    exact = true;
-    ++report.factorizations;
-    report.factor_seconds += since(t_factor);
-  };
-  // out = current^-1 r: directly when the factorisation is of the current matrix, else CG
-  // preconditioned by the (lagged) factorisation, starting from `out` when `guess` is set;
-  // refactorises when CG needs too many iterations.
-  auto solve = [&](const Eigen::VectorXd& r, Eigen::VectorXd& out, bool guess) {
-    const auto t_solve = Clock::now();
-    struct Stop {
-      ConstrainedStepReport& report;
-      Clock::time_point t;
-      ~Stop() { report.solve_seconds += since(t); }
-    } stop{report, t_solve};
-    if (!exact) {
-      const double r_norm = r.norm();
-      if (!guess) out.setZero(n);
-      if (r_norm == 0.0) {
-        out.setZero(n);
-        return;
-      }
-      const SparseOperator op(*current);
-      Eigen::VectorXd res = r, Ap(n);
-      if (guess) {
-        op.apply(out, Ap);
-        res -= Ap;
-      }
-      if (res.norm() <= reuse.cg_tolerance * r_norm) return;
-      Eigen::VectorXd z = F->llt.solve(res), p = z;
-      double rz = res.dot(z);
-      for (int it = 0; it < reuse.max_cg_iterations; ++it) {
-        op.apply(p, Ap);
-        const double alpha = rz / p.dot(Ap);
-        out += alpha * p;
-        res -= alpha * Ap;
-        ++report.cg_iterations;
-        ++F->cg_iterations_since;
-        if (res.norm() <= reuse.cg_tolerance * r_norm) return;
-        z = F->llt.solve(res);
-        const double rz_next = res.dot(z);
-        p = z + (rz_next / rz) * p;
-        rz = rz_next;
-      }
-      refactor();  // the lagged factorisation no longer preconditions well
-    }
-    out = F->llt.solve(r);
-  };
-
-  // A stale factorisation is refreshed once the CG work it caused costs about a factorisation.
-  auto use = [&](const Eigen::SparseMatrix<double>& M, Factorization::Slot& slot) {
+  LaggedFactorization* F = &factor_->backward_euler;
+  LaggedFactorization::Counters counters;
+  auto use = [&](const Eigen::SparseMatrix<double>& M, LaggedFactorization& slot) {
     current = &M;
     F = &slot;
-    exact = false;
-    if (!reuse.enabled || !F->valid || F->cg_iterations_since >= F->cg_iterations_per_factorization) refactor();
+    F->use(M, reuse, counters);
   };
+  auto solve = [&](const Eigen::VectorXd& r, Eigen::VectorXd& out, bool guess) { F->solve(r, out, guess, counters); };
   use(A, factor_->backward_euler);
   Eigen::VectorXd v_star;
   solve(b, v_star, false);
@@ -346,10 +258,10 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
     auto form_w = [&](bool reuse_columns) {
       const auto t_w = Clock::now();
       std::vector<Eigen::Index> missing;
-      w_exact = exact;
+      w_exact = F->exact();
       for (Eigen::Index i = 0; i < m; ++i) {
-        const auto it = F->columns.find(rows[i].key);
-        if (it != F->columns.end() && it->second.jacobian.size() == rows[i].jacobian.size()) {
+        const auto it = F->columns().find(rows[i].key);
+        if (it != F->columns().end() && it->second.jacobian.size() == rows[i].jacobian.size()) {
           double diff = 0.0, norm = 0.0;
           bool same_dofs = true;
           for (std::size_t j = 0; j < rows[i].jacobian.size(); ++j) {
@@ -369,14 +281,14 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
         Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, static_cast<Eigen::Index>(missing.size()));
         for (std::size_t c = 0; c < missing.size(); ++c)
           for (const auto& [dof, value] : rows[missing[c]].jacobian) rhs(dof, static_cast<Eigen::Index>(c)) = value;
-        const Eigen::MatrixXd cols = F->llt.solve(rhs);
+        const Eigen::MatrixXd cols = F->apply_inverse(rhs);
         for (std::size_t c = 0; c < missing.size(); ++c)
-          F->columns[rows[missing[c]].key] = {rows[missing[c]].jacobian, cols.col(static_cast<Eigen::Index>(c))};
+          F->columns()[rows[missing[c]].key] = {rows[missing[c]].jacobian, cols.col(static_cast<Eigen::Index>(c))};
       }
       std::vector<Eigen::Triplet<double>> cached;
       Y.resize(n, m);
       for (Eigen::Index i = 0; i < m; ++i) {
-        const Factorization::Slot::Column& col = F->columns.at(rows[i].key);
+        const LaggedFactorization::Column& col = F->columns().at(rows[i].key);
         for (const auto& [dof, value] : col.jacobian) cached.emplace_back(i, dof, value);
         Y.col(i) = col.values;
       }
@@ -385,7 +297,7 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
       W = Jc * Y;  // sparse-times-dense: O(nnz(J) m)
       for (Eigen::Index i = 0; i < m; ++i) W(i, i) = std::max(W(i, i), 1e-14 * W.diagonal().cwiseAbs().maxCoeff());
       // Bound the cache (n doubles per column) on large meshes.
-      if (static_cast<double>(F->columns.size()) * static_cast<double>(n) > 3.2e7) F->columns.clear();
+      if (static_cast<double>(F->columns().size()) * static_cast<double>(n) > 3.2e7) F->columns().clear();
       report.w_seconds += since(t_w);
     };
     form_w(true);
@@ -402,28 +314,28 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
     double residual = 0.0, previous_residual = 0.0;
     bool pgs_on_exact_w = false;
     for (int s = 0;; ++s) {
-      const bool was_exact = exact;
-      const int cg_before = report.cg_iterations;
+      const bool was_exact = F->exact();
+      const int cg_before = counters.cg_iterations;
       // After a PGS solve, the change of multipliers moves u by about P^-1 J^T dlambda: with that
       // as the starting guess CG only corrects for P != H.
       if (s > 0) u.noalias() += Y * (lambda - lambda_before);
       solve(Eigen::VectorXd(J.transpose() * lambda) - g, u, s > 0);
-      const int cg_this_split = report.cg_iterations - cg_before;
-      if (exact && !was_exact) form_w(false);  // CG gave up and H was refactorised: W is exact now
+      const int cg_this_split = counters.cg_iterations - cg_before;
+      if (F->exact() && !was_exact) form_w(false);  // CG gave up and H was refactorised: W is exact now
       w = offset + J * u;
       residual = lcp_residual(W, w - W * lambda, bounds, lambda);
       if (residual <= split_tolerance || pgs_on_exact_w) break;
       // Give up on a slow splitting (refactorise and form W exactly) when the sweeps still
       // needed, extrapolated from the last contraction, would cost more CG than a factorisation.
       bool slow = s >= reuse.max_splitting_iterations;
-      if (!slow && !exact && s >= 2) {
+      if (!slow && !F->exact() && s >= 2) {
         const double rate = residual / previous_residual;
         const double remaining = rate >= 1.0 ? 1e9 : std::log(split_tolerance / residual) / std::log(rate);
-        slow = remaining * std::max(cg_this_split, 1) > F->cg_iterations_per_factorization;
+        slow = remaining * std::max(cg_this_split, 1) > F->refresh_cost();
       }
       previous_residual = residual;
       if (slow) {
-        if (!exact) refactor();
+        if (!F->exact()) F->refactor(counters);
         form_w(false);
       }
       pgs_on_exact_w = w_exact;
@@ -452,6 +364,10 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
     v_k += u;  // Eq. 21 for k = 0
   }
   report.lcp_seconds = since(t_lcp);
+  report.factorizations = counters.factorizations;
+  report.cg_iterations = counters.cg_iterations;
+  report.factor_seconds = counters.factor_seconds;
+  report.solve_seconds = counters.solve_seconds;
   x = x0 + h * v;
   time_ += h;
   report.seconds = since(t_step);
