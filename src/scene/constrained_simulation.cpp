@@ -1,6 +1,8 @@
 #include "sinew/scene/constrained_simulation.hpp"
 
 #include <chrono>
+#include <fstream>
+#include <map>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -12,6 +14,7 @@
 #include "sinew/io/atomic_file.hpp"
 #include "sinew/io/obj_writer.hpp"
 #include "sinew/io/vtk_writer.hpp"
+#include "sinew/scene/simulation.hpp"
 #include "sinew/mesh/surface.hpp"
 
 namespace sinew {
@@ -66,6 +69,65 @@ nlohmann::json frame_json(const FrameRecord& r, const ConstrainedFrame& c, doubl
           {"failure", r.failure}};
 }
 
+// The FrameRecord (what the CLI and RunSummary report) of a frame's summary.json entry.
+FrameRecord frame_record_from_json(const nlohmann::json& j) {
+  FrameRecord r;
+  r.frame = j.at("frame");
+  r.converged = j.at("converged");
+  r.newton_iterations = j.at("sqp_iterations");
+  r.linear_iterations = j.at("pgs_iterations");
+  r.residual = std::max(j.at("max_energy_violation").get<double>(), j.at("max_penetration").get<double>());
+  r.energy = j.at("elastic_energy");
+  r.kinetic_energy = j.at("kinetic_energy");
+  r.volume = j.at("volume");
+  r.seconds = j.at("seconds");
+  r.solve_seconds = r.seconds;
+  r.failure = j.at("failure");
+  return r;
+}
+
+// What a constrained run's checkpoint restores: the state after the last converged frame, the
+// stepper's multipliers (its warm start) and the frames so far. The lagged factorisations are
+// not stored: the resumed run refactorises at its first step, so it agrees with an
+// uninterrupted run to the solver tolerances (CG, LCP), not bit for bit.
+struct ConstrainedCheckpoint {
+  int frame = 0;
+  Eigen::VectorXd x, v;
+  std::map<long, double> multipliers;
+  nlohmann::json frames = nlohmann::json::array();
+  std::vector<std::pair<double, std::string>> pvd;
+};
+
+ConstrainedCheckpoint read_constrained_checkpoint(const std::filesystem::path& out, const std::string& fingerprint,
+                                                  Eigen::Index dofs) {
+  const std::string cp = (out / "checkpoint.json").string();
+  std::ifstream in(cp);
+  if (!in) throw Error("no checkpoint to resume from (run without --resume first)", cp);
+  ConstrainedCheckpoint c;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    if (j.value("mode", "") != "constrained")
+      throw Error("checkpoint was not written by a constrained (paper 001) run; run again without --resume", cp);
+    if (j.at("scene_fingerprint") != fingerprint)
+      throw Error("the scene file changed since the checkpoint was written; run again without --resume", cp);
+    for (const char* key : {"x", "v"}) {
+      const auto values = j.at(key).get<std::vector<double>>();
+      if (static_cast<Eigen::Index>(values.size()) != dofs)
+        throw Error(fmt::format("checkpoint {} has the wrong size (another mesh?)", key), cp);
+      Eigen::VectorXd& target = std::string(key) == "x" ? c.x : c.v;
+      target = Eigen::Map<const Eigen::VectorXd>(values.data(), dofs);
+      if (!target.allFinite()) throw Error(fmt::format("checkpoint {} is not finite", key), cp);
+    }
+    for (const auto& m : j.at("multipliers")) c.multipliers[m.at(0).get<long>()] = m.at(1).get<double>();
+    c.frames = j.at("frames");
+    for (const auto& p : j.at("pvd")) c.pvd.emplace_back(p.at(0).get<double>(), p.at(1).get<std::string>());
+    c.frame = j.at("frame").get<int>();
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("corrupt checkpoint: {}", e.what()), cp);
+  }
+  return c;
+}
+
 }  // namespace
 
 RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) {
@@ -77,7 +139,7 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
   const std::string file = scene.file.string();
   const int frames = options.frames.value_or(scene.frames);
   if (frames < 1) throw Error(fmt::format("must be at least 1, got {}", frames), "--frames");
-  if (options.resume) throw Error("resuming is not available for scenes with a constraints section (yet)", "--resume");
+  if (options.resume && options.out_dir.empty()) throw Error("resuming needs an output directory", "--resume");
   // Bones and self-contact drive the incremental-potential solver only; refuse rather than ignore.
   if (scene.rig) throw Error("bones are not supported with a constraints section", file + ": /rig");
   if (scene.self_contact) throw Error("self-contact is not supported with a constraints section", file + ": /self_contact");
@@ -126,11 +188,25 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
   for (Eigen::Index i = 0; i < mesh.num_vertices(); ++i)
     if (!fixed[3 * i]) v.segment<3>(3 * i) = dynamics.initial_velocity;
 
-  // ---- outputs
+  // ---- outputs and checkpoint
   const bool writing = !options.out_dir.empty();
   const auto& out = options.out_dir;
+  const std::string fingerprint = scene_fingerprint(scene);
+  const double h = spec.step.time_step;
   std::vector<std::pair<double, std::string>> pvd;
-  if (writing) {
+  nlohmann::json frames_json = nlohmann::json::array();
+  int first_frame = 1;
+  if (options.resume) {
+    ConstrainedCheckpoint c = read_constrained_checkpoint(out, fingerprint, x.size());
+    x = std::move(c.x);
+    v = std::move(c.v);
+    stepper.set_multipliers(std::move(c.multipliers));
+    stepper.set_time(c.frame * steps_per_frame * h);
+    for (const auto& f : c.frames) summary.frames.push_back(frame_record_from_json(f));
+    frames_json = std::move(c.frames);
+    pvd = std::move(c.pvd);
+    first_frame = c.frame + 1;
+  } else if (writing) {
     remove_previous_outputs(out);
     ensure_directory(out);
   }
@@ -139,7 +215,6 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
     for (Eigen::Index e = 0; e < U.size(); ++e) U(e) = model->element_energy(e, x);
     return U;
   };
-  const double h = spec.step.time_step;
   auto write_frame = [&](int frame) {
     if (!writing || frame % scene.output.every != 0) return;
     if (scene.output.vtu) {
@@ -154,7 +229,6 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
     }
     if (scene.output.obj) write_surface_obj(out / fmt::format("surface_{:04d}.obj", frame), mesh, surface, x);
   };
-  nlohmann::json frames_json = nlohmann::json::array();
   auto write_summary = [&] {
     if (!writing) return;
     int sqp = 0, pgs = 0;
@@ -182,10 +256,21 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
                         {"frames", frames_json}};
     write_file_atomically(out / "summary.json", [&](std::ostream& os) { os << s.dump(2) << '\n'; });
   };
-  write_frame(0);
+  // Written only after a converged frame, so --resume never continues from a failed state.
+  auto write_checkpoint = [&](int frame) {
+    if (!writing) return;
+    nlohmann::json multipliers = nlohmann::json::array();
+    for (const auto& [key, value] : stepper.multipliers()) multipliers.push_back({key, value});
+    nlohmann::json cp = {{"mode", "constrained"}, {"scene_fingerprint", fingerprint}, {"frame", frame},
+                         {"multipliers", multipliers},  {"frames", frames_json}, {"pvd", pvd}};
+    cp["x"] = std::vector<double>(x.data(), x.data() + x.size());
+    cp["v"] = std::vector<double>(v.data(), v.data() + v.size());
+    write_file_atomically(out / "checkpoint.json", [&](std::ostream& os) { os << cp.dump() << '\n'; });
+  };
+  if (first_frame == 1) write_frame(0);
 
   // ---- time stepping
-  for (int frame = 1; frame <= frames; ++frame) {
+  for (int frame = first_frame; frame <= frames; ++frame) {
     const auto t_frame = Clock::now();
     if (options.progress) options.progress({frame, frames, 0, 0.0, elapsed(), false, nullptr});
     FrameRecord record;
@@ -220,6 +305,7 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
     frames_json.push_back(frame_json(record, cf, frame * steps_per_frame * h));
     write_frame(frame);
     write_summary();
+    if (record.converged) write_checkpoint(frame);
     if (options.progress) options.progress({frame, frames, record.newton_iterations, record.residual, elapsed(), true, &summary.frames.back()});
     if (!record.converged) break;  // reported, and the state written for inspection
   }

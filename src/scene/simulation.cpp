@@ -66,13 +66,6 @@ Eigen::VectorXd traction_forces(const VolumeMesh& mesh, const BoundarySurface& s
   return f;
 }
 
-std::string scene_fingerprint(const Scene& scene) {
-  std::ifstream in(scene.file, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return fmt::format("{:016x}", std::hash<std::string>{}(ss.str()));
-}
-
 nlohmann::json vec_json(const Eigen::Vector3d& v) { return {v(0), v(1), v(2)}; }
 
 nlohmann::json reactions_json(const std::vector<Eigen::Vector3d>& forces) {
@@ -165,6 +158,13 @@ Checkpoint read_checkpoint(const std::filesystem::path& out, const std::string& 
 }
 
 }  // namespace
+
+std::string scene_fingerprint(const Scene& scene) {
+  std::ifstream in(scene.file, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return fmt::format("{:016x}", std::hash<std::string>{}(ss.str()));
+}
 
 // A fresh run replaces the files an earlier run left in the folder (only the names Sinew
 // writes), so a shorter run does not leave stale frames behind.

@@ -24,6 +24,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "sinew/constraints/contact.hpp"
@@ -94,6 +95,11 @@ class ConstrainedStepper {
   // Simulated time (s) at the start of the next step; moving obstacles are evaluated from it.
   double time() const { return time_; }
   void set_time(double seconds) { time_ = seconds; }
+
+  // Multipliers of the last step's final LCP by constraint key: the next step's warm start and
+  // first Lagrangian Hessian. A resumed run restores them with the positions and velocities.
+  const std::map<long, double>& multipliers() const { return multipliers_; }
+  void set_multipliers(std::map<long, double> multipliers) { multipliers_ = std::move(multipliers); }
 
   const ConstrainedStepSettings& settings() const { return settings_; }
   const ElementEnergyModel& model() const { return *model_; }
