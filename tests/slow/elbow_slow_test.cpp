@@ -7,7 +7,7 @@
 // hexahedra). Skips itself unless SINEW_SLOW_TESTS=1:
 //   SINEW_SLOW_TESTS=1 build/tests/sinew_slow_tests --gtest_filter='ElbowSlow*'
 // SINEW_ELBOW_CELL (metres, default 0.01), SINEW_ELBOW_FRAMES (default 12),
-// SINEW_ELBOW_SUBSTEPS (flexion increments per frame for the contact runs, default 3),
+// SINEW_ELBOW_SUBSTEPS (flexion increments per frame for the contact runs, default 1),
 // SINEW_ELBOW_COMPARE_CELL (the model comparison's cell, default 0.02),
 // SINEW_ELBOW_SURFACE (the arm surface to voxelise, default examples/meshes/arm.obj; "analytic"
 // for the occupancy lattice of arm_sdf()). One TBB thread unless SINEW_ELBOW_THREADS says more.
@@ -101,7 +101,7 @@ TEST(ElbowSlow, SelfContactHoldsTheClosedCrease) {
   if (!slow_enabled()) GTEST_SKIP() << "set SINEW_SLOW_TESTS=1 to run it";
   RunSettings s;
   s.contact = true;
-  s.substeps = static_cast<int>(env_number("SINEW_ELBOW_SUBSTEPS", 3));
+  s.substeps = static_cast<int>(env_number("SINEW_ELBOW_SUBSTEPS", 1));
   for (double nu : {0.488, 0.45}) {
     const ElbowRun r = run("stable_neo_hookean", nu, s);
     EXPECT_TRUE(r.all_converged()) << nu;
@@ -118,7 +118,7 @@ TEST(ElbowSlow, ModelComparisonAtNu0488) {
   RunSettings s;
   s.cell = env_number("SINEW_ELBOW_COMPARE_CELL", 0.02);
   s.contact = true;
-  s.substeps = static_cast<int>(env_number("SINEW_ELBOW_SUBSTEPS", 3));
+  s.substeps = static_cast<int>(env_number("SINEW_ELBOW_SUBSTEPS", 1));
   const ElbowRun snh = run("stable_neo_hookean", 0.488, s);
   const ElbowRun corot = run("corotational", 0.488, s);
   const ElbowRun stvk = run("stvk_kikuuwe", 0.488, s);

@@ -53,8 +53,8 @@ VolumeMesh arm_lattice(double h);
 // planes through the origin, so again y = 0 and z = 0 are lattice planes.
 VolumeMesh arm_lattice(const TriangleSurface& arm, double h);
 
-// Humerus (never moves) and radius/ulna (rigid, keyed at frames 0 and `frames`, turned by
-// `degrees` about the elbow axis; slerp between).
+// Humerus (never moves) and radius/ulna (rigid, turned by `degrees` about the elbow axis over
+// `frames`, keyed at every frame so that each frame is an exact turn about the joint).
 // `bone_radius` must exceed the lattice's cell size so that each bone binds a ring of vertices
 // around its axis (one line of vertices would leave the flesh free to spin about it).
 Rig elbow_rig(int frames, double degrees = 120.0, double bone_radius = 0.016);
