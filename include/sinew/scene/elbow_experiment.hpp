@@ -40,7 +40,7 @@ inline constexpr double kWristX = 0.56;
 // within 6 cm of the joint leave (52 mm - two bone radii) for the 10 cm of biceps and forearm
 // flesh between them: the bound rings drive the crease flesh through itself whatever the
 // material or contact stiffness. Ending 10 cm off the joint leaves the crease flesh room to
-// bulge and to meet (measured: 5 mm instead of 30 mm deep at h = 20 mm, nu = 0.488).
+// bulge and to meet (measured at h = 20 mm, nu = 0.488: about 6 mm deep instead of 30 mm).
 inline constexpr double kBoneJointClearance = 0.10;
 
 SignedDistance arm_sdf();
@@ -71,9 +71,10 @@ struct ElbowConfig {
   double bone_radius = 0.016;
   double degrees = 120.0;
   int frames = 6;
-  // Flexion increments per frame: each is solved to convergence, and self-contact detects new
-  // penetrating samples at every converged increment, so with small increments the crease
-  // closes gradually and each sample is caught shallow (with the right target side).
+  // Flexion increments per frame: each is solved to convergence and self-contact detects new
+  // penetrating samples at every converged increment, so the crease closes in smaller steps.
+  // (Measured: at h = 10 mm, nu = 0.45, 3 increments per frame did not change how deep the
+  // crease's fold ends up; docs/experiments.md, Elbow flexion.)
   int substeps = 1;
   // Bulge probes within this distance (m) of the elbow plane (rest x = kElbowX) are skipped:
   // right at the joint axis the fold turns the flesh about the axis and its distance from
