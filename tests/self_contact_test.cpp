@@ -8,6 +8,7 @@
 
 #include "dynamics_test_support.hpp"
 #include "sinew/contact/self_contact_form.hpp"
+#include "sinew/core/error.hpp"
 #include "sinew/fem/discretization.hpp"
 #include "sinew/fem/elastic_form.hpp"
 #include "sinew/material/spec.hpp"
@@ -87,6 +88,31 @@ TEST(SelfContactDetection, PenetratingSamplesGetTargetsOnTheOtherBlocksSurface) 
     EXPECT_NEAR(c.depth, (xs - c.target).norm(), 1e-14);
     EXPECT_LE(c.depth, overlap + 1e-12);
   }
+}
+
+// surface_depth: how far a penetrating sample is from the nearest deformed surface outside its
+// own neighbourhood. Block b pushed 0.1 into block a: the samples of a's face x = 1 away from
+// b's edges are exactly 0.1 inside b (its face x = 0.9); none is deeper than the overlap.
+TEST(SelfContactDetection, SurfaceDepthIsTheDistanceToTheOtherBlocksFace) {
+  const VolumeMesh m = two_blocks(0.0, 3);
+  const SelfContactForm form(m, SelfContactSettings{});
+  const double overlap = 0.1;
+  const Eigen::VectorXd x = shifted(m, -overlap);
+  const std::vector<SurfaceContact> contacts = form.detect(x);
+  ASSERT_FALSE(contacts.empty());
+  int interior = 0;
+  for (const auto& c : contacts) {
+    const double d = form.surface_depth(x, c.sample);
+    EXPECT_LE(d, overlap + 1e-12) << c.sample;
+    EXPECT_GE(d, 0.0) << c.sample;
+    const Eigen::Vector3d X = m.vertices.row(c.sample).transpose();
+    if (!in_b(m, c.sample) && X.y() > 0.2 && X.y() < 0.8 && X.z() > 0.2 && X.z() < 0.8) {
+      EXPECT_NEAR(d, overlap, 1e-12) << c.sample;
+      ++interior;
+    }
+  }
+  EXPECT_GT(interior, 0);
+  EXPECT_THROW(form.surface_depth(x, -1), Error);
 }
 
 TEST(SelfContactForm, GradientAndHessianMatchFiniteDifferencesWithTargetsFrozen) {

@@ -275,6 +275,23 @@ std::vector<SurfaceContact> SelfContactForm::detect(const Eigen::VectorXd& x) co
   return out;
 }
 
+double SelfContactForm::surface_depth(const Eigen::VectorXd& x, int sample) const {
+  if (x.size() != 3 * rest_.rows()) throw Error("positions have the wrong size", "self_contact");
+  if (sample < 0 || sample >= rest_.rows()) throw Error("sample out of range", "self_contact");
+  const Eigen::Vector3d xs = position(x, sample);
+  const std::vector<int>& ring = sample_ring_[sample];
+  double best = std::numeric_limits<double>::infinity();
+  for (Eigen::Index t = 0; t < triangles_.rows(); ++t) {
+    bool near = false;
+    for (int k = 0; k < 3 && !near; ++k) near = std::binary_search(ring.begin(), ring.end(), triangles_(t, k));
+    if (near) continue;
+    const Eigen::Vector3d a = position(x, triangles_(t, 0)), b = position(x, triangles_(t, 1)), c = position(x, triangles_(t, 2));
+    const Eigen::Vector3d w = closest_point_barycentric(xs, a, b, c);
+    best = std::min(best, (w(0) * a + w(1) * b + w(2) * c - xs).norm());
+  }
+  return best;
+}
+
 bool SelfContactForm::begin_solve(const Eigen::VectorXd& x) {
   // Contacts carried over from the last solve are refitted where their sample is still found
   // inside the body (fresh triangle, weights and normal). No contact is added here: at a

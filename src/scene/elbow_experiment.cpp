@@ -95,17 +95,23 @@ Rig elbow_rig(int frames, double degrees, double bone_radius) {
   Rig rig;
   Bone humerus;
   humerus.name = "humerus";
-  humerus.shape = std::make_shared<CapsuleShape>(Eigen::Vector3d(-0.02, 0, 0), Eigen::Vector3d(0.26, 0, 0), bone_radius);
+  // Both bones end kBoneJointClearance short of the elbow axis (header: why).
+  humerus.shape = std::make_shared<CapsuleShape>(Eigen::Vector3d(-0.02, 0, 0), Eigen::Vector3d(kElbowX - kBoneJointClearance, 0, 0), bone_radius);
   humerus.keys.push_back(BoneKey{});
   Bone forearm;
   forearm.name = "radius_ulna";
-  forearm.shape = std::make_shared<CapsuleShape>(Eigen::Vector3d(0.34, 0, 0), Eigen::Vector3d(0.55, 0, 0), bone_radius);
-  forearm.keys.push_back(BoneKey{});
-  BoneKey flexed;
-  flexed.frame = frames;
-  flexed.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, kElbowAxis));
-  flexed.translation = kElbowCentre - flexed.rotation * kElbowCentre;
-  forearm.keys.push_back(flexed);
+  forearm.shape = std::make_shared<CapsuleShape>(Eigen::Vector3d(kElbowX + kBoneJointClearance, 0, 0), Eigen::Vector3d(0.55, 0, 0), bone_radius);
+  // One key per frame: between keys the rig slerps the rotation and lerps the translation, which
+  // does not keep the elbow centre in place (over 0 -> 120 degrees in one span the forearm would
+  // swing up to 13 cm off the joint); keyed every frame, the frames themselves are exact turns
+  // about the elbow axis.
+  for (int k = 0; k <= frames; ++k) {
+    BoneKey key;
+    key.frame = k;
+    key.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(degrees * k / frames * std::numbers::pi / 180.0, kElbowAxis));
+    key.translation = kElbowCentre - key.rotation * kElbowCentre;
+    forearm.keys.push_back(key);
+  }
   rig.bones = {humerus, forearm};
   validate_rig(rig, "elbow rig");
   return rig;
@@ -116,6 +122,9 @@ double ElbowRun::volume_change_percent() const {
   return 100.0 * (frames.back().solve.volume / rest_volume - 1.0);
 }
 bool ElbowRun::in_contact() const { return !frames.empty() && frames.back().gap < 0.5 * cell_size; }
+bool ElbowRun::all_converged() const {
+  return !frames.empty() && std::all_of(frames.begin(), frames.end(), [](const ElbowFrame& f) { return f.solve.converged; });
+}
 bool ElbowRun::interpenetrating() const { return !frames.empty() && frames.back().max_depth > 0.25 * cell_size; }
 double ElbowRun::mean_newton() const {
   double s = 0.0;
@@ -153,7 +162,11 @@ ElbowRun run_elbow(const ElbowConfig& c, const std::function<void(const ElbowFra
   auto contact_form = std::make_shared<SelfContactForm>(mesh, contact);
   if (c.self_contact) problem.add_form(contact_form);
 
-  const Rig rig = elbow_rig(c.frames, c.degrees, c.bone_radius);
+  if (c.substeps < 1) throw Error("substeps must be at least 1", where);
+  if (!(c.joint_exclusion >= 0.0 && c.joint_exclusion < 0.1)) throw Error("joint_exclusion must be in [0, 0.1) m", where);
+  // The rig is keyed in flexion increments; frame f ends at increment f * substeps.
+  const int increments = c.frames * c.substeps;
+  const Rig rig = elbow_rig(increments, c.degrees, c.bone_radius);
   const RigBinding binding = bind_rig(rig, mesh.vertices);
   for (size_t b = 0; b < rig.bones.size(); ++b)
     if (binding.count_per_bone[b] == 0) throw Error("bone " + rig.bones[b].name + " binds no lattice vertex", where);
@@ -165,19 +178,25 @@ ElbowRun run_elbow(const ElbowConfig& c, const std::function<void(const ElbowFra
   run.samples = static_cast<Eigen::Index>(contact_form->samples().size());
   run.bound_vertices = static_cast<Eigen::Index>(binding.bound_vertices.size());
   run.cell_size = c.cell_size;
+  run.substeps = c.substeps;
   for (Eigen::Index e = 0; e < disc->num_elements(); ++e) run.rest_volume += disc->rest_volume(e);
 
-  // Surface samples by side: rest x below the elbow belongs to the upper arm (biceps side).
+  // Lattice surface samples on either side, away from the elbow's own flesh, for the gap.
   const std::vector<int>& samples = contact_form->samples();
   std::vector<int> far_upper, far_fore;
   for (int s : samples) {
-    // Away from the elbow's own flesh, for the biceps-forearm gap.
     const double X = mesh.vertices(s, 0);
     if (X < kElbowX - 0.06) far_upper.push_back(s);
     if (X > kElbowX + 0.06) far_fore.push_back(s);
   }
-  // Bulge probes: rest points and how to follow them. Bulges are measured on the bellies, away
-  // from the shoulder end, the elbow (whose flesh swings with the forearm) and the wrist end.
+  auto gap_at = [&](const Eigen::VectorXd& y) {
+    double gap = std::numeric_limits<double>::infinity();
+    for (int a : far_upper)
+      for (int b : far_fore) gap = std::min(gap, (y.segment<3>(3 * a) - y.segment<3>(3 * b)).norm());
+    return gap;
+  };
+  run.rest_gap = gap_at(mesh.rest_positions());
+  // Bulge probes: rest points and how to follow them.
   Eigen::MatrixX3d probe_rest;
   std::optional<Embedding> probe_embedding;
   if (arm) {
@@ -197,43 +216,60 @@ ElbowRun run_elbow(const ElbowConfig& c, const std::function<void(const ElbowFra
     e.element.assign(free_samples.size(), -1);
     probe_embedding = std::move(e);
   }
-  std::vector<int> free_upper, free_fore;
+  // Each segment's probes, the elbow crease included; only the few mm at the joint plane (where
+  // the fold turns the flesh about the elbow axis) and the shoulder and wrist caps are left out.
+  std::vector<int> upper_probes, fore_probes;
   for (Eigen::Index p = 0; p < probe_rest.rows(); ++p) {
     const double X = probe_rest(p, 0);
-    if (X > 0.04 && X < kElbowX - 0.06) free_upper.push_back(static_cast<int>(p));
-    if (X > kElbowX + 0.06 && X < kWristX - 0.04) free_fore.push_back(static_cast<int>(p));
+    if (X >= 0.0 && X <= kElbowX - c.joint_exclusion) upper_probes.push_back(static_cast<int>(p));
+    if (X >= kElbowX + c.joint_exclusion && X <= kWristX) fore_probes.push_back(static_cast<int>(p));
   }
 
   Eigen::VectorXd x = mesh.rest_positions();
   for (int frame = 1; frame <= c.frames; ++frame) {
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<char> fixed(x.size(), 0);
-    apply_rig(rig, binding, mesh.vertices, frame, x, fixed);
-    problem.set_fixed(fixed);
-    const NewtonReport r = newton_solve(problem, x, *linear, c.solver.newton);
     ElbowFrame f;
     f.solve.frame = frame;
-    f.solve.converged = r.converged;
-    f.solve.newton_iterations = r.iterations;
-    f.solve.linear_iterations = r.linear_iterations;
-    f.solve.residual = r.residual;
-    f.solve.energy = r.energy;
-    f.solve.assembly_seconds = r.assembly_seconds;
-    f.solve.solve_seconds = r.solve_seconds;
-    f.solve.failure = r.failure;
+    f.solve.converged = true;
+    for (int sub = 1; sub <= c.substeps; ++sub) {
+      const int increment = (frame - 1) * c.substeps + sub;
+      std::vector<char> fixed(x.size(), 0);
+      apply_rig(rig, binding, mesh.vertices, increment, x, fixed);
+      problem.set_fixed(fixed);
+      const NewtonReport r = newton_solve(problem, x, *linear, c.solver.newton);
+      // As in run_experiment: a failed solve is recorded and the next increment starts from its
+      // best effort (never hidden, never retried with other settings).
+      f.solve.converged = f.solve.converged && r.converged;
+      f.solve.newton_iterations += r.iterations;
+      f.solve.linear_iterations += r.linear_iterations;
+      f.solve.residual = r.residual;
+      f.solve.energy = r.energy;
+      f.solve.assembly_seconds += r.assembly_seconds;
+      f.solve.solve_seconds += r.solve_seconds;
+      if (!r.converged && f.solve.failure.empty()) f.solve.failure = "increment " + std::to_string(sub) + ": " + r.failure;
+      f.substeps += r.converged ? 1 : 0;
+    }
     f.solve.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     for (Eigen::Index e = 0; e < disc->num_elements(); ++e)
       for (int q = 0; q < disc->quadrature_points(); ++q)
         f.solve.volume += disc->weight(e, q) * disc->deformation_gradient(e, q, x).determinant();
     f.solve.min_quadrature_J = min_quadrature_J(*disc, x);
+    f.volume_change_percent = 100.0 * (f.solve.volume / run.rest_volume - 1.0);
 
     // Penetration after the solve (whether or not contact was on).
     const std::vector<SurfaceContact> contacts = contact_form->detect(x);
     f.contacts = static_cast<int>(contacts.size());
-    for (const auto& k : contacts) f.max_depth = std::max(f.max_depth, k.depth);
+    for (const auto& k : contacts) {
+      f.max_surface_depth = std::max(f.max_surface_depth, contact_form->surface_depth(x, k.sample));
+      if (k.depth > f.max_depth) {
+        f.max_depth = k.depth;
+        f.deepest_rest = mesh.vertices.row(k.sample).transpose();
+      }
+    }
+    f.contacts_active = c.self_contact ? static_cast<int>(contact_form->contacts().size()) : 0;
 
-    // Radial growth about each bone's deformed axis line.
-    const Affine34 A = rig.bones[1].transform_at(frame);
+    // Radial growth about each segment's deformed bone axis line.
+    const Affine34 A = rig.bones[1].transform_at(frame * c.substeps);
     const Eigen::Vector3d fore_dir = A.leftCols<3>() * Eigen::Vector3d::UnitX();
     const Eigen::MatrixX3d probes = probe_embedding->positions(x);
     auto growth = [&](int p, const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
@@ -243,11 +279,9 @@ ElbowRun run_elbow(const ElbowConfig& c, const std::function<void(const ElbowFra
     };
     f.biceps_bulge = -std::numeric_limits<double>::infinity();
     f.forearm_bulge = -std::numeric_limits<double>::infinity();
-    for (int s : free_upper) f.biceps_bulge = std::max(f.biceps_bulge, growth(s, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()));
-    for (int s : free_fore) f.forearm_bulge = std::max(f.forearm_bulge, growth(s, kElbowCentre, fore_dir));
-    f.gap = std::numeric_limits<double>::infinity();
-    for (int a : far_upper)
-      for (int b : far_fore) f.gap = std::min(f.gap, (x.segment<3>(3 * a) - x.segment<3>(3 * b)).norm());
+    for (int p : upper_probes) f.biceps_bulge = std::max(f.biceps_bulge, growth(p, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()));
+    for (int p : fore_probes) f.forearm_bulge = std::max(f.forearm_bulge, growth(p, A.leftCols<3>() * kElbowCentre + A.col(3), fore_dir));
+    f.gap = gap_at(x);
     run.frames.push_back(f);
     if (on_frame) on_frame(run.frames.back());
   }

@@ -96,6 +96,12 @@ class SelfContactForm final : public Form {
   void add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override;
   void couplings(std::vector<std::vector<int>>& cliques) const override;
 
+  // How far a penetrating sample is inside the body: its distance to the closest deformed
+  // boundary triangle outside its own neighbourhood (no vertex in the sample's elements), i.e.
+  // how far it must move to leave the body. SurfaceContact::depth is the distance to the
+  // reference-map target instead, which in a tight fold can be far from the nearest surface.
+  double surface_depth(const Eigen::VectorXd& x, int sample) const;
+
   const std::vector<int>& samples() const { return samples_; }
   double sample_area(int vertex) const { return area_[vertex]; }
 

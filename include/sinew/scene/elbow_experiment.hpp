@@ -34,6 +34,15 @@ inline constexpr long kPaperElbowHexes = 45809;
 inline constexpr double kElbowX = 0.30;
 inline constexpr double kWristX = 0.56;
 
+// Both bones end this far (m) from the elbow axis. A coarse lattice needs bones thicker than its
+// cells (a ring of bound vertices around each axis); at 120 degrees of flexion the forearm bone
+// sits d sin(120 deg) from the humerus axis at distance d from the joint, so bones reaching
+// within 6 cm of the joint leave (52 mm - two bone radii) for the 10 cm of biceps and forearm
+// flesh between them: the bound rings drive the crease flesh through itself whatever the
+// material or contact stiffness. Ending 10 cm off the joint leaves the crease flesh room to
+// bulge and to meet (measured at h = 20 mm, nu = 0.488: about 6 mm deep instead of 30 mm).
+inline constexpr double kBoneJointClearance = 0.10;
+
 SignedDistance arm_sdf();
 // A box that holds the arm.
 Eigen::AlignedBox3d arm_bounds();
@@ -44,8 +53,8 @@ VolumeMesh arm_lattice(double h);
 // planes through the origin, so again y = 0 and z = 0 are lattice planes.
 VolumeMesh arm_lattice(const TriangleSurface& arm, double h);
 
-// Humerus (never moves) and radius/ulna (rigid, keyed at frames 0 and `frames`, turned by
-// `degrees` about the elbow axis; slerp between).
+// Humerus (never moves) and radius/ulna (rigid, turned by `degrees` about the elbow axis over
+// `frames`, keyed at every frame so that each frame is an exact turn about the joint).
 // `bone_radius` must exceed the lattice's cell size so that each bone binds a ring of vertices
 // around its axis (one line of vertices would leave the flesh free to spin about it).
 Rig elbow_rig(int frames, double degrees = 120.0, double bone_radius = 0.016);
@@ -62,6 +71,15 @@ struct ElbowConfig {
   double bone_radius = 0.016;
   double degrees = 120.0;
   int frames = 6;
+  // Flexion increments per frame: each is solved to convergence and self-contact detects new
+  // penetrating samples at every converged increment, so the crease closes in smaller steps.
+  // (Measured: at h = 10 mm, nu = 0.45, 3 increments per frame did not change how deep the
+  // crease's fold ends up; docs/experiments.md, Elbow flexion.)
+  int substeps = 1;
+  // Bulge probes within this distance (m) of the elbow plane (rest x = kElbowX) are skipped:
+  // right at the joint axis the fold turns the flesh about the axis and its distance from
+  // either bone's axis line means nothing.
+  double joint_exclusion = 0.005;
   bool self_contact = true;
   double contact_stiffness = 0.0;  // Pa/m; 0 picks 50 E / cell_size
   bool refine_contact = false;
@@ -69,19 +87,35 @@ struct ElbowConfig {
 };
 
 struct ElbowFrame {
-  ExperimentFrame solve;  // iterations, volume, timings
+  ExperimentFrame solve;  // iterations (summed over the substeps), volume, timings
+  int substeps = 0;       // converged flexion increments in this frame
   int contacts = 0;       // penetrating samples at the end of the frame
+  // Deepest penetrating sample: distance to its reference-map target (SurfaceContact::depth,
+  // what "interpenetrating" is judged on), and, as a check, the largest distance of a
+  // penetrating sample to the nearest deformed surface outside its own neighbourhood
+  // (SelfContactForm::surface_depth).
   double max_depth = 0.0;
-  // Max radial growth (m) of surface vertices about the bone axis, over the biceps belly
-  // (rest x in [0.04, 0.24]) and the forearm belly (rest x in [0.36, 0.52]): the embedded arm
-  // surface's vertices, or the lattice's free boundary vertices without a surface.
+  double max_surface_depth = 0.0;
+  Eigen::Vector3d deepest_rest = Eigen::Vector3d::Zero();  // rest position of the deepest sample
+  // Max radial growth (m) of surface vertices about their segment's deformed bone axis line
+  // (distance now minus distance at rest): upper arm (biceps side) = rest x in
+  // [0, kElbowX - joint_exclusion], forearm = rest x in [kElbowX + joint_exclusion, kWristX];
+  // the elbow crease is included, the end caps are not. Probes: the embedded arm surface's
+  // vertices, or the lattice's free boundary vertices without a surface.
   double biceps_bulge = 0.0, forearm_bulge = 0.0;
-  double gap = 0.0;  // smallest distance between biceps-side and forearm-side surface samples
+  // Smallest distance between lattice surface samples of the upper arm (rest x < kElbowX - 0.06)
+  // and of the forearm (rest x > kElbowX + 0.06): the biceps-forearm gap, away from the
+  // elbow's own flesh (which joins the two sides and is never "apart").
+  double gap = 0.0;
+  int contacts_active = 0;  // contacts in the self-contact form after the frame
+  double volume_change_percent = 0.0;
 };
 
 struct ElbowRun {
   Eigen::Index vertices = 0, elements = 0, samples = 0, bound_vertices = 0;
+  int substeps = 1;  // flexion increments per frame
   double rest_volume = 0.0;
+  double rest_gap = 0.0;  // ElbowFrame::gap of the straight arm
   double cell_size = 0.0;
   std::vector<ElbowFrame> frames;
   Eigen::VectorXd x;
@@ -93,6 +127,7 @@ struct ElbowRun {
   bool in_contact() const;
   // Some sample is deeper than a quarter cell inside the body after the solve.
   bool interpenetrating() const;
+  bool all_converged() const;
   double mean_newton() const;
   double mean_linear() const;
   double mean_seconds() const;
