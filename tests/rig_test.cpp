@@ -66,6 +66,31 @@ TEST(RigKeys, RigidKeysSlerpRotationAndLerpTranslation) {
   EXPECT_LE((bone.transform_at(99.0).col(3) - k1.translation).norm(), 1e-12);
 }
 
+TEST(Rig, TurnAboutAPivotKeepsThePivotBetweenFarApartKeys) {
+  // A rest key, then 120 degrees about an elbow 0.3 m from the origin in one span: half-way the
+  // bone has turned 60 degrees about the elbow, which has not moved.
+  const nlohmann::json j = nlohmann::json::parse(R"({"bones": [
+      {"name": "forearm", "capsule": {"a": [0.4, 0, 0], "b": [0.55, 0, 0], "radius": 0.02},
+       "keys": [{"frame": 0},
+                {"frame": 4, "rotation": {"axis": [0, -1, 0], "degrees": 120, "center": [0.3, 0, 0.05]}}]}]})");
+  const Rig rig = parse_rig(j, "rig.json");
+  const Eigen::Vector3d elbow(0.3, 0, 0.05), wrist(0.55, 0, 0.05);
+  for (double frame : {0.0, 1.0, 2.0, 3.0, 4.0}) {
+    const Affine34 A = rig.bones[0].transform_at(frame);
+    EXPECT_LE((apply(A, elbow) - elbow).norm(), 1e-12) << frame;
+    const Mat3 R = Eigen::AngleAxisd(frame / 4.0 * 120.0 * std::numbers::pi / 180.0, -Eigen::Vector3d::UnitY()).toRotationMatrix();
+    EXPECT_LE((apply(A, wrist) - (elbow + R * (wrist - elbow))).norm(), 1e-12) << frame;
+  }
+  // A quaternion key (no centre) keeps its own pose when it takes the neighbour's pivot.
+  const nlohmann::json q = nlohmann::json::parse(R"({"bones": [
+      {"name": "b", "capsule": {"a": [0, 0, 0], "b": [1, 0, 0], "radius": 0.1},
+       "keys": [{"frame": 0, "quaternion": [0.7071067811865476, 0, 0, 0.7071067811865476], "translation": [0, 0, 1]},
+                {"frame": 2, "rotation": {"axis": [0, 0, 1], "degrees": 0, "center": [5, 0, 0]}}]}]})");
+  const Rig rq = parse_rig(q, "rig.json");
+  const Eigen::Vector3d X(1, 2, 3);
+  EXPECT_LE((apply(rq.bones[0].transform_at(0.0), X) - Eigen::Vector3d(-2, 1, 4)).norm(), 1e-12);
+}
+
 TEST(RigKeys, AffineKeysInterpolateComponentWise) {
   Bone bone = capsule_bone("b", Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 0.1);
   bone.motion = BoneMotion::Affine;

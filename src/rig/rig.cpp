@@ -10,15 +10,16 @@
 namespace sinew {
 namespace {
 
-Affine34 rigid_matrix(const Eigen::Quaterniond& q, const Eigen::Vector3d& t) {
+// [R | c + t - R c]: x = R (X - c) + c + t.
+Affine34 rigid_matrix(const Eigen::Quaterniond& q, const Eigen::Vector3d& t, const Eigen::Vector3d& c) {
   Affine34 A;
   A.leftCols<3>() = q.normalized().toRotationMatrix();
-  A.col(3) = t;
+  A.col(3) = c + t - A.leftCols<3>() * c;
   return A;
 }
 
 Affine34 key_matrix(const Bone& bone, const BoneKey& k) {
-  return bone.motion == BoneMotion::Rigid ? rigid_matrix(k.rotation, k.translation) : k.affine;
+  return bone.motion == BoneMotion::Rigid ? rigid_matrix(k.rotation, k.translation, k.center) : k.affine;
 }
 
 }  // namespace
@@ -33,9 +34,11 @@ Affine34 Bone::transform_at(double frame) const {
   const BoneKey& k0 = *(next - 1);
   const double s = (frame - k0.frame) / (k1.frame - k0.frame);
   if (motion == BoneMotion::Affine) return (1.0 - s) * k0.affine + s * k1.affine;
-  // slerp takes the shorter arc (Eigen flips the sign of one quaternion when needed).
+  // slerp takes the shorter arc (Eigen flips the sign of one quaternion when needed). The pivot
+  // is interpolated apart from the translation, so a turn about a fixed pivot stays a turn
+  // about it between keys (folding c - R c into t and lerping that would swing the pivot).
   const Eigen::Quaterniond q = k0.rotation.normalized().slerp(s, k1.rotation.normalized());
-  return rigid_matrix(q, (1.0 - s) * k0.translation + s * k1.translation);
+  return rigid_matrix(q, (1.0 - s) * k0.translation + s * k1.translation, (1.0 - s) * k0.center + s * k1.center);
 }
 
 void validate_rig(const Rig& rig, const std::string& context) {
@@ -54,7 +57,8 @@ void validate_rig(const Rig& rig, const std::string& context) {
       if (!std::isfinite(key.frame)) throw Error("frame must be finite", kw);
       if (k > 0 && !(key.frame > bone.keys[k - 1].frame)) throw Error("keyframes must have increasing frames", kw);
       if (bone.motion == BoneMotion::Rigid) {
-        if (!key.rotation.coeffs().allFinite() || !(key.rotation.norm() > 1e-12) || !key.translation.allFinite())
+        if (!key.rotation.coeffs().allFinite() || !(key.rotation.norm() > 1e-12) || !key.translation.allFinite() ||
+            !key.center.allFinite())
           throw Error("rigid key needs a finite non-zero rotation and a finite translation", kw);
       } else if (!key.affine.allFinite()) {
         throw Error("affine key must be finite", kw);

@@ -1,5 +1,8 @@
 #include "sinew/rig/rig_reader.hpp"
 
+#include <optional>
+#include <vector>
+
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
@@ -13,16 +16,19 @@ namespace sinew {
 namespace {
 
 // {"axis": [...], "degrees": d, "center": [...]}: a rotation about an axis through `center`
-// (default the origin), returned as the rotation and the translation it implies.
-void parse_rotation(JsonObject r, BoneKey& key) {
+// (default the origin), the pivot kept apart so that interpolation turns about it.
+// Returns whether the rotation names its centre.
+bool parse_rotation(JsonObject r, BoneKey& key) {
   r.allow({"axis", "degrees", "center"});
+  const bool has_center = r.has("center");
   const Eigen::Vector3d axis = r.vec3("axis");
   if (!(axis.norm() > 0.0)) r.fail("axis", "must be non-zero");
   const double degrees = r.number("degrees");
   const Eigen::Vector3d center = r.vec3("center", Eigen::Vector3d::Zero());
   key.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, axis.normalized()));
-  key.translation += center - key.rotation * center;  // x = R (X - c) + c + t
+  key.center = center;  // x = R (X - c) + c + t
   r.finish();
+  return has_center;
 }
 
 Affine34 parse_matrix(JsonObject& key) {
@@ -64,8 +70,10 @@ Bone parse_bone(JsonObject o) {
   }
   const std::string motion = o.choice("motion", {"rigid", "affine"}, "rigid");
   bone.motion = motion == "rigid" ? BoneMotion::Rigid : BoneMotion::Affine;
+  std::vector<char> explicit_center;
   for (JsonObject key : o.objects("keys")) {
     BoneKey k;
+    bool key_has_center = false;
     if (bone.motion == BoneMotion::Rigid) {
       key.allow({"frame", "translation", "rotation", "quaternion"});
     } else {
@@ -77,7 +85,7 @@ Bone parse_bone(JsonObject o) {
     if (bone.motion == BoneMotion::Rigid) {
       k.translation = key.vec3("translation", Eigen::Vector3d::Zero());
       if (key.has("rotation") && key.has("quaternion")) key.fail("quaternion", "give either rotation or quaternion, not both");
-      if (key.has("rotation")) parse_rotation(key.object("rotation"), k);
+      if (key.has("rotation")) key_has_center = parse_rotation(key.object("rotation"), k);
       if (key.has("quaternion")) {
         const nlohmann::json& q = key.raw("quaternion");
         const std::string reason = "must be 4 finite numbers [w, x, y, z], not all zero";
@@ -97,9 +105,28 @@ Bone parse_bone(JsonObject o) {
     }
     key.finish();
     bone.keys.push_back(k);
+    explicit_center.push_back(key_has_center);
   }
   if (bone.keys.empty()) o.fail("keys", "needs at least one keyframe");
   o.finish();
+  // Keys interpolate about their pivots; a key that names none (a rest key, a quaternion key)
+  // takes the nearest earlier named pivot, else the next one, with its translation adjusted so
+  // that its own pose is unchanged (R (X - c) + c + t' = R X + t). So {"frame": 0} followed by a
+  // turn about the elbow turns about the elbow all the way.
+  if (bone.motion == BoneMotion::Rigid) {
+    for (size_t i = 0; i < bone.keys.size(); ++i) {
+      if (explicit_center[i]) continue;
+      std::optional<Eigen::Vector3d> pivot;
+      for (size_t j = i; j-- > 0 && !pivot;)
+        if (explicit_center[j]) pivot = bone.keys[j].center;
+      for (size_t j = i + 1; j < bone.keys.size() && !pivot; ++j)
+        if (explicit_center[j]) pivot = bone.keys[j].center;
+      if (!pivot) continue;
+      BoneKey& k = bone.keys[i];
+      k.translation += k.rotation * *pivot - *pivot;
+      k.center = *pivot;
+    }
+  }
   return bone;
 }
 

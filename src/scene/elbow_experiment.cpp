@@ -101,15 +101,12 @@ Rig elbow_rig(int frames, double degrees, double bone_radius) {
   Bone forearm;
   forearm.name = "radius_ulna";
   forearm.shape = std::make_shared<CapsuleShape>(Eigen::Vector3d(kElbowX + kBoneJointClearance, 0, 0), Eigen::Vector3d(0.55, 0, 0), bone_radius);
-  // One key per frame: between keys the rig slerps the rotation and lerps the translation, which
-  // does not keep the elbow centre in place (over 0 -> 120 degrees in one span the forearm would
-  // swing up to 13 cm off the joint); keyed every frame, the frames themselves are exact turns
-  // about the elbow axis.
+  // One key per frame, each an exact turn about the elbow axis through its centre (the pivot).
   for (int k = 0; k <= frames; ++k) {
     BoneKey key;
     key.frame = k;
     key.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(degrees * k / frames * std::numbers::pi / 180.0, kElbowAxis));
-    key.translation = kElbowCentre - key.rotation * kElbowCentre;
+    key.center = kElbowCentre;
     forearm.keys.push_back(key);
   }
   rig.bones = {humerus, forearm};

@@ -16,14 +16,17 @@ using Affine34 = Eigen::Matrix<double, 3, 4>;  // x = A.leftCols<3>() X + A.col(
 // A bone transform at one (possibly fractional) frame, relative to the rest pose.
 struct BoneKey {
   double frame = 0.0;
-  // Rigid keys: rotation and translation. Affine keys: `affine` only.
+  // Rigid keys: x = R (X - c) + c + t with R = rotation, c = center (the pivot), t =
+  // translation. Affine keys: `affine` only.
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
   Affine34 affine = Affine34::Identity();
 };
 
 enum class BoneMotion {
-  Rigid,   // keys interpolated by slerp (rotation) and lerp (translation)
+  Rigid,   // keys interpolated by slerp (rotation) and lerp (translation, pivot): a turn about a
+           // fixed pivot keeps the pivot in place between keys
   Affine,  // keys interpolated component-wise; shears and scalings allowed
 };
 
