@@ -89,6 +89,8 @@ nlohmann::json to_json(const FrameRecord& r) {
           {"potential_energy", r.potential_energy},
           {"contacts", r.contacts},
           {"max_penetration", r.max_penetration},
+          {"self_contacts", r.self_contacts},
+          {"self_penetration", r.self_penetration},
           {"seconds", r.seconds},
           {"assembly_seconds", r.assembly_seconds},
           {"solve_seconds", r.solve_seconds},
@@ -111,6 +113,8 @@ FrameRecord frame_from_json(const nlohmann::json& j) {
   r.potential_energy = j.value("potential_energy", 0.0);
   r.contacts = j.value("contacts", 0);
   r.max_penetration = j.value("max_penetration", 0.0);
+  r.self_contacts = j.value("self_contacts", 0);
+  r.self_penetration = j.value("self_penetration", 0.0);
   r.seconds = j.at("seconds");
   r.assembly_seconds = j.at("assembly_seconds");
   r.solve_seconds = j.at("solve_seconds");
@@ -422,6 +426,10 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
     for (size_t v = 0; v < model.boundary_owner.size(); ++v)
       if (model.boundary_owner[v] >= 0) record.reactions[model.boundary_owner[v]] += g.segment<3>(3 * v);
     record_energies(model.dynamic, *model.elastic, model.forces, x, record);
+    if (model.rig.contact) {
+      record.self_contacts = static_cast<int>(model.rig.contact->contacts().size());
+      for (const SurfaceContact& c : model.rig.contact->detect(x)) record.self_penetration = std::max(record.self_penetration, c.depth);
+    }
     record.seconds = std::chrono::duration<double>(Clock::now() - t_frame).count();
     summary.frames.push_back(record);
     write_frame(frame);

@@ -36,6 +36,10 @@ struct FrameRecord {
   double kinetic_energy = 0.0, potential_energy = 0.0;
   int contacts = 0;               // penetrating (boundary vertex, obstacle) pairs
   double max_penetration = 0.0;  // deepest penetration into an obstacle
+  // Self-contact (reference-map penalty): samples held by a contact spring, and the deepest
+  // surface sample found inside the body at the frame's state (0 without self-contact).
+  int self_contacts = 0;
+  double self_penetration = 0.0;
   double seconds = 0.0;
   double assembly_seconds = 0.0;
   double solve_seconds = 0.0;
