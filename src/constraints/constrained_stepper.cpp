@@ -39,6 +39,89 @@ std::pair<Vec3, Vec3> tangents(const Vec3& n) {
   return {t1, n.cross(t1)};
 }
 
+// The constraints linearised at x_k (Eq. 22) and the nonlinear violations there: an energy row
+// for every element within `activation` of the limit or active earlier in the step, and a
+// normal row plus two friction rows per contact candidate. Row offsets: C / h for unilateral
+// rows, the current sliding velocity J v_k - t . v_obstacle for friction rows.
+struct Linearisation {
+  std::vector<Row> rows;
+  double energy_violation = 0.0, max_energy = 0.0, penetration = 0.0;
+};
+
+Linearisation linearise_constraints(const ElementEnergyModel& model, const ConstrainedStepSettings& settings,
+                                    const std::vector<char>& fixed, const ContactProvider& contacts, double time,
+                                    const Eigen::VectorXd& x_k, const Eigen::VectorXd& v_k,
+                                    const std::map<long, char>& ever_active) {
+  const double h = settings.time_step;
+  const Discretization& disc = model.discretization();
+  const auto& elements = disc.mesh().elements;
+  const std::optional<EnergyLimit>& limit = settings.energy_limit;
+  Linearisation lin;
+  std::vector<Row>& rows = lin.rows;
+  // Element energies, and the Jacobians of the elements that get a row, in parallel.
+  std::vector<double> energies(static_cast<size_t>(disc.num_elements()));
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, disc.num_elements(), 32), [&](const auto& range) {
+    for (Eigen::Index e = range.begin(); e < range.end(); ++e) energies[static_cast<size_t>(e)] = model.element_energy(e, x_k);
+  });
+  std::vector<Eigen::Index> limited;
+  for (Eigen::Index e = 0; e < disc.num_elements(); ++e) {
+    const double U = energies[static_cast<size_t>(e)];
+    lin.max_energy = std::max(lin.max_energy, U);
+    if (!limit) continue;
+    lin.energy_violation = std::max(lin.energy_violation, U / limit->max_energy - 1.0);
+    if (U >= (1.0 - settings.activation) * limit->max_energy || ever_active.count(e)) limited.push_back(e);
+  }
+  std::vector<Eigen::VectorXd> jacobians(limited.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, limited.size(), 4), [&](const auto& range) {
+    for (size_t i = range.begin(); i < range.end(); ++i) jacobians[i] = energy_constraint_jacobian(model, limited[i], x_k, *limit);
+  });
+  for (size_t l = 0; l < limited.size(); ++l) {
+    const Eigen::Index e = limited[l];
+    const double U = energies[static_cast<size_t>(e)];
+    const Eigen::VectorXd& jac = jacobians[l];
+    Row r;
+    r.energy = true;
+    r.key = e;
+    for (int a = 0; a < disc.nodes(); ++a)
+      for (int i = 0; i < 3; ++i) {
+        const Eigen::Index dof = 3 * elements(e, a) + i;
+        if (!fixed[dof]) r.jacobian.emplace_back(dof, jac(3 * a + i));
+      }
+    if (r.jacobian.empty()) continue;  // a fully fixed element cannot be helped
+    r.offset = (1.0 - U / limit->max_energy) / h;  // C(x_k) / h (Eq. 22)
+    rows.push_back(std::move(r));
+  }
+  const std::vector<ContactCandidate> candidates = contacts ? contacts(x_k, time, time + h) : std::vector<ContactCandidate>{};
+  for (const ContactCandidate& c : candidates) {
+    lin.penetration = std::max(lin.penetration, -c.gap);
+    const Eigen::Index base = 3 * static_cast<Eigen::Index>(c.vertex);
+    if (fixed[base] && fixed[base + 1] && fixed[base + 2]) continue;
+    auto make_row = [&](const Vec3& dir) {
+      Row r;
+      for (int i = 0; i < 3; ++i)
+        if (!fixed[base + i] && dir(i) != 0.0) r.jacobian.emplace_back(base + i, dir(i));
+      return r;
+    };
+    Row normal = make_row(c.normal);
+    normal.key = -1 - 3L * c.vertex;
+    normal.offset = c.gap / h;
+    const int normal_index = static_cast<int>(rows.size());
+    rows.push_back(std::move(normal));
+    if (c.friction > 0.0) {
+      const auto [t1, t2] = tangents(c.normal);
+      int s = 1;
+      for (const Vec3& tangent : {t1, t2}) {
+        Row r = make_row(tangent);
+        r.key = -1 - 3L * c.vertex - s++;
+        r.bounds = {normal_index, c.friction};
+        r.offset = row_dot(r, v_k) - tangent.dot(c.obstacle_velocity);  // target: no sliding
+        rows.push_back(std::move(r));
+      }
+    }
+  }
+  return lin;
+}
+
 }  // namespace
 
 // Two lagged factorisations: one of a backward-Euler matrix A (first SQP iteration) and one of
@@ -132,77 +215,13 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
   auto t_lcp = Clock::now();
   for (int k = 0;; ++k) {
     const Eigen::VectorXd x_k = x0 + h * v_k;
-    // Nonlinear violation at x_k; gather the rows to linearise. Row offsets: c / h for
-    // unilateral rows, the current sliding velocity J v_k - t . v_obstacle for friction rows.
-    std::vector<Row> rows;
-    double energy_violation = 0.0, max_energy = 0.0;
-    // Element energies, and the Jacobians of the elements that get a row, in parallel.
-    std::vector<double> energies(static_cast<size_t>(disc.num_elements()));
-    tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, disc.num_elements(), 32), [&](const auto& range) {
-      for (Eigen::Index e = range.begin(); e < range.end(); ++e)
-        energies[static_cast<size_t>(e)] = model_->element_energy(e, x_k);
-    });
-    std::vector<Eigen::Index> limited;
-    for (Eigen::Index e = 0; e < disc.num_elements(); ++e) {
-      const double U = energies[static_cast<size_t>(e)];
-      max_energy = std::max(max_energy, U);
-      if (!limit) continue;
-      energy_violation = std::max(energy_violation, U / limit->max_energy - 1.0);
-      if (U >= (1.0 - settings_.activation) * limit->max_energy || ever_active.count(e)) limited.push_back(e);
-    }
-    std::vector<Eigen::VectorXd> jacobians(limited.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, limited.size(), 4), [&](const auto& range) {
-      for (size_t i = range.begin(); i < range.end(); ++i)
-        jacobians[i] = energy_constraint_jacobian(*model_, limited[i], x_k, *limit);
-    });
-    for (size_t l = 0; l < limited.size(); ++l) {
-      const Eigen::Index e = limited[l];
-      const double U = energies[static_cast<size_t>(e)];
-      const Eigen::VectorXd& jac = jacobians[l];
-      Row r;
-      r.energy = true;
-      r.key = e;
-      for (int a = 0; a < disc.nodes(); ++a)
-        for (int i = 0; i < 3; ++i) {
-          const Eigen::Index dof = 3 * elements(e, a) + i;
-          if (!fixed_[dof]) r.jacobian.emplace_back(dof, jac(3 * a + i));
-        }
-      if (r.jacobian.empty()) continue;  // a fully fixed element cannot be helped
-      r.offset = (1.0 - U / limit->max_energy) / h;  // C(x_k) / h (Eq. 22)
-      rows.push_back(std::move(r));
-    }
-    double penetration = 0.0;
-    const std::vector<ContactCandidate> candidates = contacts_ ? contacts_(x_k, time_, time_ + h) : std::vector<ContactCandidate>{};
-    for (const ContactCandidate& c : candidates) {
-      penetration = std::max(penetration, -c.gap);
-      const Eigen::Index base = 3 * static_cast<Eigen::Index>(c.vertex);
-      if (fixed_[base] && fixed_[base + 1] && fixed_[base + 2]) continue;
-      auto make_row = [&](const Vec3& dir) {
-        Row r;
-        for (int i = 0; i < 3; ++i)
-          if (!fixed_[base + i] && dir(i) != 0.0) r.jacobian.emplace_back(base + i, dir(i));
-        return r;
-      };
-      Row normal = make_row(c.normal);
-      normal.key = -1 - 3L * c.vertex;
-      normal.offset = c.gap / h;
-      const int normal_index = static_cast<int>(rows.size());
-      rows.push_back(std::move(normal));
-      if (c.friction > 0.0) {
-        const auto [t1, t2] = tangents(c.normal);
-        int s = 1;
-        for (const Vec3& tangent : {t1, t2}) {
-          Row r = make_row(tangent);
-          r.key = -1 - 3L * c.vertex - s++;
-          r.bounds = {normal_index, c.friction};
-          r.offset = row_dot(r, v_k) - tangent.dot(c.obstacle_velocity);  // target: no sliding
-          rows.push_back(std::move(r));
-        }
-      }
-    }
+    const Linearisation lin = linearise_constraints(*model_, settings_, fixed_, contacts_, time_, x_k, v_k, ever_active);
+    const std::vector<Row>& rows = lin.rows;
+    const double energy_violation = lin.energy_violation;
+    const double penetration = lin.penetration;
     report.energy_violation = std::max(0.0, energy_violation);
     report.penetration = penetration;
-    report.max_element_energy = max_energy;
+    report.max_element_energy = lin.max_energy;
     const bool satisfied = energy_violation <= settings_.energy_tolerance && penetration <= settings_.contact_tolerance;
     if (satisfied || k >= settings_.sqp_max_iterations) {
       report.converged = satisfied;
