@@ -132,6 +132,35 @@ struct ConstrainedStepper::Factorization {
   LaggedFactorization backward_euler, lagrangian;
 };
 
+void ConstrainedStepTotals::add(const ConstrainedStepReport& r) {
+  ++steps;
+  sqp_iterations += r.sqp_iterations;
+  pgs_iterations += r.pgs_iterations;
+  unconverged_steps += r.converged ? 0 : 1;
+  max_sqp_iterations = std::max(max_sqp_iterations, r.sqp_iterations);
+  max_active_energy = std::max(max_active_energy, r.active_energy);
+  max_active_contacts = std::max(max_active_contacts, r.active_contacts);
+  seconds += r.seconds;
+  factorizations += r.factorizations;
+  cg_iterations += r.cg_iterations;
+  splitting_iterations += r.splitting_iterations;
+  if (r.active_energy + r.active_contacts > 0) {
+    ++active_steps;
+    active_rows += r.active_energy + r.active_contacts;
+    active_energy_rows += r.active_energy;
+    active_seconds += r.seconds;
+  }
+  factor_seconds += r.factor_seconds;
+  lcp_seconds += r.lcp_seconds;
+  solve_seconds += r.solve_seconds;
+  w_seconds += r.w_seconds;
+  pgs_seconds += r.pgs_seconds;
+  max_energy_violation = std::max(max_energy_violation, r.energy_violation);
+  max_element_energy = std::max(max_element_energy, r.max_element_energy);
+  max_pgs_residual = std::max(max_pgs_residual, r.pgs_residual);
+  max_penetration = std::max(max_penetration, r.penetration);
+}
+
 ConstrainedStepper::ConstrainedStepper(std::shared_ptr<const ElementEnergyModel> model, Eigen::VectorXd masses,
                                        Eigen::VectorXd external, std::vector<char> fixed, ContactProvider contacts,
                                        ConstrainedStepSettings settings)

@@ -23,26 +23,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // What one frame (steps_per_frame steps) did, for summary.json.
-struct ConstrainedFrame {
-  int steps = 0, sqp_iterations = 0, max_sqp_iterations = 0, pgs_iterations = 0;
-  int active_energy = 0, active_contacts = 0, factorizations = 0, cg_iterations = 0, splitting_iterations = 0;
-  double pgs_residual = 0.0, energy_violation = 0.0, penetration = 0.0, max_element_energy = 0.0;
+struct ConstrainedFrame : ConstrainedStepTotals {
   double elastic_energy = 0.0, kinetic_energy = 0.0;
-  void add(const ConstrainedStepReport& r) {
-    ++steps;
-    sqp_iterations += r.sqp_iterations;
-    max_sqp_iterations = std::max(max_sqp_iterations, r.sqp_iterations);
-    pgs_iterations += r.pgs_iterations;
-    factorizations += r.factorizations;
-    cg_iterations += r.cg_iterations;
-    splitting_iterations += r.splitting_iterations;
-    active_energy = std::max(active_energy, r.active_energy);
-    active_contacts = std::max(active_contacts, r.active_contacts);
-    pgs_residual = std::max(pgs_residual, r.pgs_residual);
-    energy_violation = std::max(energy_violation, r.energy_violation);
-    penetration = std::max(penetration, r.penetration);
-    max_element_energy = std::max(max_element_energy, r.max_element_energy);
-  }
 };
 
 nlohmann::json frame_json(const FrameRecord& r, const ConstrainedFrame& c, double time) {
@@ -53,14 +35,14 @@ nlohmann::json frame_json(const FrameRecord& r, const ConstrainedFrame& c, doubl
           {"sqp_iterations", c.sqp_iterations},
           {"max_sqp_iterations_per_step", c.max_sqp_iterations},
           {"pgs_iterations", c.pgs_iterations},
-          {"max_pgs_residual", c.pgs_residual},
+          {"max_pgs_residual", c.max_pgs_residual},
           {"factorizations", c.factorizations},
           {"cg_iterations", c.cg_iterations},
           {"splitting_iterations", c.splitting_iterations},
-          {"max_energy_violation", c.energy_violation},
-          {"max_penetration", c.penetration},
-          {"max_active_energy_constraints", c.active_energy},
-          {"max_active_contacts", c.active_contacts},
+          {"max_energy_violation", c.max_energy_violation},
+          {"max_penetration", c.max_penetration},
+          {"max_active_energy_constraints", c.max_active_energy},
+          {"max_active_contacts", c.max_active_contacts},
           {"max_element_energy", c.max_element_energy},
           {"elastic_energy", c.elastic_energy},
           {"kinetic_energy", c.kinetic_energy},
@@ -289,7 +271,7 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
     record.converged = record.failure.empty();
     record.newton_iterations = cf.sqp_iterations;
     record.linear_iterations = cf.pgs_iterations;
-    record.residual = std::max(cf.energy_violation, cf.penetration);
+    record.residual = std::max(cf.max_energy_violation, cf.max_penetration);
     const Eigen::VectorXd U = element_energies();
     cf.elastic_energy = U.sum();
     for (Eigen::Index i = 0; i < mesh.num_vertices(); ++i) cf.kinetic_energy += 0.5 * masses(i) * v.segment<3>(3 * i).squaredNorm();

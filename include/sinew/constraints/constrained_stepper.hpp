@@ -80,6 +80,26 @@ struct ConstrainedStepReport {
   double solve_seconds = 0.0, w_seconds = 0.0, pgs_seconds = 0.0;
 };
 
+// A run's or a frame's step reports summed up (the benchmark, the tests and summary.json).
+struct ConstrainedStepTotals {
+  int steps = 0, sqp_iterations = 0, pgs_iterations = 0, unconverged_steps = 0;
+  int max_sqp_iterations = 0, max_active_energy = 0, max_active_contacts = 0;
+  int factorizations = 0, cg_iterations = 0, splitting_iterations = 0;
+  // Steps that ended with an active constraint, and the active rows summed over them (energy
+  // rows and contact normals with lambda > 0), for the paper's "average number of constraints".
+  int active_steps = 0;
+  long active_rows = 0, active_energy_rows = 0;
+  double active_seconds = 0.0;
+  double mean_active_rows() const { return active_steps ? double(active_rows) / active_steps : 0.0; }
+  double mean_active_energy_rows() const { return active_steps ? double(active_energy_rows) / active_steps : 0.0; }
+  double ms_per_active_step() const { return active_steps ? 1e3 * active_seconds / active_steps : 0.0; }
+  double factor_seconds = 0.0, lcp_seconds = 0.0, solve_seconds = 0.0, w_seconds = 0.0, pgs_seconds = 0.0;
+  double seconds = 0.0, max_energy_violation = 0.0, max_element_energy = 0.0;
+  double max_pgs_residual = 0.0, max_penetration = 0.0;
+  double ms_per_step() const { return steps ? 1e3 * seconds / steps : 0.0; }
+  void add(const ConstrainedStepReport& r);
+};
+
 class ConstrainedStepper {
  public:
   // `masses`: lumped nodal masses per vertex; `external`: constant external forces (3V);
