@@ -42,3 +42,17 @@ json_check() {
 d = json.load(open(sys.argv[1]))
 $1" "$TMP/out" || fail "JSON check failed: $1"
 }
+
+# scene_error "EXPECTED TEXT" 'SCENE JSON': writes the scene to a fresh folder under $TMP, runs
+# it and checks the error line contains "scene.json: " followed by the expected text, and that
+# nothing was written (the output folder was not created).
+CASE=0
+scene_error() {
+  local expected=$1 scene=$2
+  CASE=$((CASE + 1))
+  local dir=$TMP/case$CASE
+  mkdir -p "$dir"
+  printf '%s\n' "$scene" >"$dir/scene.json"
+  expect_error "scene.json: $expected" run "$dir/scene.json" --out "$dir/out"
+  [[ ! -e $dir/out ]] || fail "case $CASE ($expected): output folder was created"
+}

@@ -5,16 +5,6 @@ source "$(dirname "$0")/common.bash"
 
 MESH='"mesh": {"box": {"min": [0, 0, 0.02], "max": [0.2, 0.2, 0.22]}, "cells": [2, 2, 2]}'
 MAT='"material": {"family": "stable_neo_hookean", "E": 1e5, "nu": 0.45}'
-CASE=0
-scene_error() {
-  local expected=$1 scene=$2
-  CASE=$((CASE + 1))
-  local dir=$TMP/case$CASE
-  mkdir -p "$dir"
-  printf '%s\n' "$scene" >"$dir/scene.json"
-  expect_error "scene.json: $expected" run "$dir/scene.json" --out "$dir/out"
-  [[ ! -e $dir/out ]] || fail "case $CASE ($expected): output folder was created"
-}
 
 scene_error "/dynamics/time_step: required field is missing" "{$MESH, $MAT, \"dynamics\": {}}"
 scene_error "/dynamics/integrator: unknown value 'explicit'" "{$MESH, $MAT, \"dynamics\": {\"time_step\": 0.01, \"integrator\": \"explicit\"}}"

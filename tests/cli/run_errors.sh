@@ -4,19 +4,6 @@ source "$(dirname "$0")/common.bash"
 
 MESH='"mesh": {"box": {"min": [0, 0, 0], "max": [1, 1, 1]}, "cells": [2, 2, 2]}'
 MAT='"material": {"family": "stable_neo_hookean", "E": 1e5, "nu": 0.45}'
-CASE=0
-
-# scene_error "EXPECTED TEXT" 'SCENE JSON': writes the scene to a fresh folder, runs it and
-# checks the error line contains "scene.json: " followed by the expected text.
-scene_error() {
-  local expected=$1 scene=$2
-  CASE=$((CASE + 1))
-  local dir=$TMP/case$CASE
-  mkdir -p "$dir"
-  printf '%s\n' "$scene" >"$dir/scene.json"
-  expect_error "scene.json: $expected" run "$dir/scene.json" --out "$dir/out"
-  [[ ! -e $dir/out ]] || fail "case $CASE ($expected): output folder was created"
-}
 
 # Unknown keys, at every level, with the allowed ones listed.
 scene_error "/bogus: unknown field (expected one of: description, mesh" "{$MESH, $MAT, \"bogus\": 1}"
