@@ -13,11 +13,11 @@
 #include <tbb/global_control.h>
 
 #include "sinew/core/error.hpp"
-#include "sinew/fem/elastic_form.hpp"
-#include "sinew/material/paper000/stable_neo_hookean.hpp"
+#include "sinew/forms/elastic_form.hpp"
+#include "sinew/material/families/stable_neo_hookean.hpp"
 #include "sinew/mesh/lattice.hpp"
-#include "sinew/scene/simulation.hpp"
-#include "sinew/solver/time_stepper.hpp"
+#include "sinew/run/simulation.hpp"
+#include "sinew/integrator/time_stepper.hpp"
 
 namespace {
 

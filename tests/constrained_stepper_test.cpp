@@ -5,9 +5,9 @@
 
 #include <fmt/format.h>
 
-#include "sinew/constraints/corotational_hex.hpp"
-#include "sinew/constraints/paper001_experiments.hpp"
-#include "sinew/fem/mass.hpp"
+#include "sinew/forms/corotational_hex.hpp"
+#include "experiments/paper001_experiments.hpp"
+#include "sinew/element/mass.hpp"
 #include "sinew/mesh/lattice.hpp"
 
 namespace sinew {

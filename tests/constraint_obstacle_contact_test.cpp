@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "sinew/constraints/corotational_hex.hpp"
+#include "sinew/forms/corotational_hex.hpp"
 #include "sinew/constraints/obstacle_contacts.hpp"
-#include "sinew/constraints/paper001_experiments.hpp"
-#include "sinew/fem/mass.hpp"
+#include "experiments/paper001_experiments.hpp"
+#include "sinew/element/mass.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/mesh/surface.hpp"
 

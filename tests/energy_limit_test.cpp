@@ -4,11 +4,11 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "sinew/constraints/corotational_hex.hpp"
+#include "sinew/forms/corotational_hex.hpp"
 #include "sinew/constraints/energy_limit.hpp"
-#include "sinew/constraints/hyperelastic_energy_model.hpp"
-#include "sinew/constraints/pgs.hpp"
-#include "sinew/material/table1/neo_hookean.hpp"
+#include "sinew/forms/hyperelastic_energy_model.hpp"
+#include "sinew/solver/pgs.hpp"
+#include "sinew/material/families/neo_hookean.hpp"
 #include "sinew/mesh/lattice.hpp"
 
 namespace sinew {

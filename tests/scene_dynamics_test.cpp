@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "io_test_support.hpp"
-#include "sinew/scene/scene.hpp"
-#include "sinew/scene/simulation.hpp"
+#include "sinew/model/scene.hpp"
+#include "sinew/run/simulation.hpp"
 
 namespace sinew {
 namespace {

@@ -7,14 +7,14 @@
 #include <random>
 
 #include "dynamics_test_support.hpp"
-#include "sinew/contact/self_contact_form.hpp"
+#include "sinew/forms/self_contact_form.hpp"
 #include "sinew/core/error.hpp"
-#include "sinew/fem/discretization.hpp"
-#include "sinew/fem/elastic_form.hpp"
+#include "sinew/element/discretization.hpp"
+#include "sinew/forms/elastic_form.hpp"
 #include "sinew/material/spec.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/solver/newton.hpp"
-#include "sinew/solver/time_stepper.hpp"
+#include "sinew/integrator/time_stepper.hpp"
 
 namespace sinew {
 namespace {

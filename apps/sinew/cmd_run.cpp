@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "sinew/core/error.hpp"
-#include "sinew/scene/simulation.hpp"
+#include "sinew/run/simulation.hpp"
 
 namespace sinew::cli {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 // Energy-limiting constraints (paper 001 §4): per element C_e = 1 - U_e/U_max >= 0 (Eq. 14)
 // and its Jacobian dC_e/dx = -dU_e/dx / U_max (Eq. 15), exact or warped-force.
-#include "sinew/constraints/element_energy_model.hpp"
+#include "sinew/forms/element_energy_model.hpp"
 
 namespace sinew {
 
