@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "sinew/element/mesh_validation.hpp"
-#include "sinew/forms/corotational_hex.hpp"
+#include "sinew/forms/corotational_hex_form.hpp"
 #include "sinew/element/mass.hpp"
 #include "sinew/mesh/lattice.hpp"
 
@@ -37,12 +37,12 @@ VolumeMesh sphere_mesh(const Eigen::Vector3d& center, double radius, int cells) 
 
 namespace {
 
-std::shared_ptr<const CorotationalHex> corotational(const VolumeMesh& mesh, double young, double poisson) {
-  return std::make_shared<CorotationalHex>(std::make_shared<Discretization>(mesh, "paper001"),
+std::shared_ptr<CorotationalHexForm> corotational(const VolumeMesh& mesh, double young, double poisson) {
+  return std::make_shared<CorotationalHexForm>(std::make_shared<Discretization>(mesh, "paper001"),
                                            HookeCoefficients::from_young_poisson(young, poisson));
 }
 
-ConstrainedStepSettings step_settings(ConstrainedStepSettings s, double h, std::optional<double> max_energy,
+EnergyLimitedStepSettings step_settings(EnergyLimitedStepSettings s, double h, std::optional<double> max_energy,
                                       JacobianKind jacobian) {
   s.time_step = h;
   if (max_energy) s.energy_limit = EnergyLimit{*max_energy, jacobian};
@@ -68,7 +68,7 @@ BeamResult run_beam(const BeamConfig& c) {
     if (mesh.vertices(v, 0) < 1e-9) fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = 1;
     if (mesh.vertices(v, 0) > 1.0 - 1e-9) tip.push_back(static_cast<int>(v));
   }
-  ConstrainedStepper stepper(model, masses, gravity, fixed, {}, step_settings(c.solver, c.time_step, c.max_energy, c.jacobian));
+  EnergyLimitedStepper stepper(model, masses, gravity, fixed, {}, step_settings(c.solver, c.time_step, c.max_energy, c.jacobian));
   Eigen::VectorXd x = mesh.rest_positions(), v = Eigen::VectorXd::Zero(n);
   BeamResult result;
   auto tip_z = [&](const Eigen::VectorXd& y) {
@@ -96,7 +96,7 @@ SphereResult run_falling_sphere(const SphereConfig& c) {
     v.segment<3>(3 * i) = c.initial_velocity;
   }
   const double margin = 0.05 * c.radius;
-  ConstrainedStepper stepper(model, masses, gravity, std::vector<char>(n, 0),
+  EnergyLimitedStepper stepper(model, masses, gravity, std::vector<char>(n, 0),
                              ground_plane_contacts(Eigen::Vector3d::UnitZ(), 0.0, c.friction, margin),
                              step_settings(c.solver, c.time_step, c.max_energy, JacobianKind::Exact));
   Eigen::VectorXd x = mesh.rest_positions();
@@ -109,7 +109,7 @@ SphereResult run_falling_sphere(const SphereConfig& c) {
   result.elements = static_cast<int>(mesh.num_elements());
   bool touched = false, left = false;
   for (int s = 0, steps = step_count(c.duration, c.time_step); s < steps; ++s) {
-    const ConstrainedStepReport r = stepper.step(x, v);
+    const EnergyLimitedStepReport r = stepper.step(x, v);
     result.totals.add(r);
     result.max_penetration = std::max(result.max_penetration, r.penetration);
     const auto [lo, hi] = extent(x);

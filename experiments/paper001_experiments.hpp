@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "sinew/integrator/constrained_stepper.hpp"
+#include "sinew/integrator/energy_limited_stepper.hpp"
 #include "sinew/mesh/volume_mesh.hpp"
 
 namespace sinew::paper001 {
@@ -19,14 +19,14 @@ VolumeMesh beam_mesh();
 VolumeMesh sphere_mesh(const Eigen::Vector3d& center, double radius, int cells);
 
 // Sums over the steps of a run (constrained_stepper.hpp).
-using Totals = ConstrainedStepTotals;
+using Totals = EnergyLimitedStepTotals;
 
 struct BeamConfig {
   double young = 150e3, poisson = 0.3, density = 500.0;
   std::optional<double> max_energy;  // J per element
   JacobianKind jacobian = JacobianKind::Exact;
   double time_step = 0.01, duration = 2.0;
-  ConstrainedStepSettings solver;  // time_step and energy_limit are filled in from the fields above
+  EnergyLimitedStepSettings solver;  // time_step and energy_limit are filled in from the fields above
 };
 struct BeamResult {
   double max_tip_deflection = 0.0;  // max over time of the tip centre's downward displacement (m)
@@ -41,7 +41,7 @@ struct SphereConfig {
   Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();
   std::optional<double> max_energy;
   double time_step = 0.01, duration = 3.0;
-  ConstrainedStepSettings solver;
+  EnergyLimitedStepSettings solver;
 };
 struct SphereResult {
   double peak_compression = 0.0;  // max over time of 1 - (vertical extent / rest extent)

@@ -65,7 +65,7 @@ struct Block {
                                             disc->mesh().vertices, s);
   }
   void step(int n) {
-    const StepReport r = stepper->step(x, v, n, n + 1, *linear);
+    const StepStats r = stepper->step(x, v, n, n + 1, *linear);
     ASSERT_TRUE(r.converged) << r.failure;
   }
   Eigen::Vector3d mean_displacement() const {

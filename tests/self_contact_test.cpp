@@ -260,7 +260,7 @@ TEST(SelfContactSolve, TimeSteppedBlocksCollideWithoutPassingThrough) {
       if (in_b(m, i)) v(3 * i) = -1.0;  // the 0.05 m gap closes after 5 steps
     double worst_overlap = 0.0;
     for (int step = 1; step <= 20; ++step) {
-      const StepReport r = stepper.step(x, v, step - 1, step, *linear);
+      const StepStats r = stepper.step(x, v, step - 1, step, *linear);
       EXPECT_TRUE(r.converged) << (contact ? "contact" : "free") << " step " << step << ": " << r.failure;
       if (!r.converged) break;
       // Interpenetration: the deepest sample inside the other block (detection at x).

@@ -14,6 +14,8 @@
 #include "sinew/element/mass.hpp"
 #include "sinew/io/mesh_reader.hpp"
 #include "sinew/mesh/lattice.hpp"
+#include "sinew/integrator/quasistatic_integrator.hpp"
+#include "sinew/model/model.hpp"
 #include "sinew/run/simulation.hpp"
 
 namespace sinew {

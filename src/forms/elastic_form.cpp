@@ -6,6 +6,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "sinew/core/error.hpp"
+
 namespace sinew {
 
 ElasticForm::ElasticForm(std::shared_ptr<const Discretization> disc,
@@ -75,13 +77,36 @@ void ElasticForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const {
   }
 }
 
-void ElasticForm::couplings(std::vector<std::vector<int>>& cliques) const {
-  const auto& elements = disc_->mesh().elements;
-  for (Eigen::Index e = 0; e < elements.rows(); ++e) {
-    std::vector<int> c(elements.cols());
-    for (Eigen::Index a = 0; a < elements.cols(); ++a) c[a] = elements(e, a);
-    cliques.push_back(std::move(c));
+double ElasticForm::element_value(Eigen::Index e, const Eigen::VectorXd& x) const {
+  const Discretization& d = *disc_;
+  const Eigen::Matrix3Xd xe = d.element_positions(e, x);
+  double U = 0.0;
+  for (int q = 0; q < d.quadrature_points(); ++q) U += d.weight(e, q) * material_->psi(xe * d.gradients(e, q));
+  return U;
+}
+
+Eigen::VectorXd ElasticForm::element_gradient(Eigen::Index e, const Eigen::VectorXd& x, JacobianKind kind) const {
+  if (kind != JacobianKind::Exact)
+    throw Error("a hyperelastic material has no warped-force Jacobian; use \"exact\"", "jacobian");
+  const Discretization& d = *disc_;
+  const Eigen::Matrix3Xd xe = d.element_positions(e, x);
+  Eigen::Matrix3Xd ge = Eigen::Matrix3Xd::Zero(3, d.nodes());
+  for (int q = 0; q < d.quadrature_points(); ++q) {
+    const Eigen::MatrixX3d& D = d.gradients(e, q);
+    ge += d.weight(e, q) * material_->pk1(xe * D) * D.transpose();
   }
+  return ge.reshaped();
+}
+
+Eigen::MatrixXd ElasticForm::element_hessian(Eigen::Index e, const Eigen::VectorXd& x) const {
+  const Discretization& d = *disc_;
+  const Eigen::Matrix3Xd xe = d.element_positions(e, x);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(3 * d.nodes(), 3 * d.nodes());
+  for (int q = 0; q < d.quadrature_points(); ++q) {
+    const Eigen::MatrixX3d& D = d.gradients(e, q);
+    add_element_hessian(D, material_->projected_hessian(xe * D, projection_), d.weight(e, q), K);
+  }
+  return K;
 }
 
 bool ElasticForm::is_valid(const Eigen::VectorXd& x) const {

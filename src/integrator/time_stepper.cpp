@@ -4,8 +4,8 @@
 
 namespace sinew {
 
-const char* to_string(Integrator integrator) {
-  return integrator == Integrator::BackwardEuler ? "backward_euler" : "semi_implicit";
+const char* to_string(DynamicsScheme scheme) {
+  return scheme == DynamicsScheme::BackwardEuler ? "backward_euler" : "semi_implicit";
 }
 
 TimeStepper::TimeStepper(Problem& problem, std::shared_ptr<InertiaForm> inertia, std::shared_ptr<DampingForm> damping,
@@ -14,7 +14,7 @@ TimeStepper::TimeStepper(Problem& problem, std::shared_ptr<InertiaForm> inertia,
     : problem_(problem), inertia_(std::move(inertia)), damping_(std::move(damping)), contact_(std::move(contact)),
       kinematics_(std::move(kinematics)), rest_(std::move(rest)), settings_(settings) {}
 
-StepReport TimeStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double frame0, double frame1,
+StepStats TimeStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double frame0, double frame1,
                              LinearSolver& linear, const std::function<void(const NewtonIterate&)>& progress) {
   const double h = time_step();
   inertia_->set_prediction(x, v);
@@ -30,11 +30,12 @@ StepReport TimeStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double fram
   problem_.set_fixed(fixed);
 
   NewtonSettings newton = settings_.newton;
-  const bool one_step = settings_.integrator == Integrator::SemiImplicit;
+  const bool one_step = settings_.integrator == DynamicsScheme::SemiImplicit;
   if (one_step) newton.max_iterations = 1;
   const NewtonReport r = newton_solve(problem_, trial, linear, newton, progress);
 
-  StepReport out;
+  StepStats out;
+  out.substeps = 1;
   out.newton_iterations = r.iterations;
   out.linear_iterations = r.linear_iterations;
   out.residual = r.residual;
@@ -45,6 +46,7 @@ StepReport TimeStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double fram
   // state after the step (Newton reports the iteration cap, which is expected here).
   out.converged = r.converged || (one_step && r.iterations == 1 && problem_.is_valid(trial));
   if (!out.converged) {
+    out.substeps = 0;
     out.failure = r.failure;
     return out;
   }

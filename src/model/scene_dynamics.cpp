@@ -27,8 +27,8 @@ DynamicsSpec parse_dynamics(JsonObject o, bool constrained) {
   d.substeps = o.integer("substeps", 1, 1);
   if (d.substeps > kMaxSubsteps) o.fail("substeps", fmt::format("must be at most {}, got {}", kMaxSubsteps, d.substeps));
   d.integrator = o.choice("integrator", {"backward_euler", "semi_implicit"}, "backward_euler") == "backward_euler"
-                     ? Integrator::BackwardEuler
-                     : Integrator::SemiImplicit;
+                     ? DynamicsScheme::BackwardEuler
+                     : DynamicsScheme::SemiImplicit;
   d.mass = o.choice("mass", {"lumped", "consistent"}, "lumped") == "lumped" ? MassKind::Lumped : MassKind::Consistent;
   if (o.has("rayleigh")) {
     JsonObject r = o.object("rayleigh");

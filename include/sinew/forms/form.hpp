@@ -1,6 +1,8 @@
 #pragma once
-// A term of the total energy (PolyFEM's "forms"): elastic, gravity, inertia, contact,
-// constraints. Each exposes value, gradient and a PSD Hessian; Newton knows only the sum.
+// A term of the total energy (PolyFEM's "forms"): elastic, corotational, gravity and loads,
+// inertia, damping, penalty and self-contact, bone springs. Each exposes value, gradient and a
+// PSD Hessian; Newton and the integrators know only the sum (assembly/problem.hpp). Forms that are
+// sums over elements also expose the per-element interface (element_form.hpp).
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -35,6 +37,9 @@ class Form {
   virtual bool refresh(const Eigen::VectorXd& /*x*/) { return false; }
   // True if the last refresh changed couplings(): the Hessian pattern is then rebuilt.
   virtual bool couplings_changed() const { return false; }
+  // False for a form whose gradient and Hessian are deliberate approximations of its value's
+  // derivatives (the corotational warped force), so a derivative check reports instead of fails.
+  virtual bool exact_derivatives() const { return true; }
 };
 
 }  // namespace sinew

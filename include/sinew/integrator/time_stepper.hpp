@@ -12,27 +12,18 @@
 #include "sinew/forms/penalty_contact_form.hpp"
 #include "sinew/forms/inertia_form.hpp"
 #include "sinew/motion/prescribed_motion.hpp"
+#include "sinew/integrator/integrator.hpp"
 #include "sinew/solver/newton.hpp"
 
 namespace sinew {
 
-enum class Integrator { BackwardEuler, SemiImplicit };
-const char* to_string(Integrator integrator);
+enum class DynamicsScheme { BackwardEuler, SemiImplicit };
+const char* to_string(DynamicsScheme scheme);
 
 struct TimeStepSettings {
-  Integrator integrator = Integrator::BackwardEuler;
+  DynamicsScheme integrator = DynamicsScheme::BackwardEuler;
   NewtonSettings newton;
   double friction_velocity = 1e-2;  // IPC's eps_v: slip speed below which friction sticks (m/s)
-};
-
-struct StepReport {
-  bool converged = false;  // semi-implicit: the one step gave a valid state
-  int newton_iterations = 0;
-  int linear_iterations = 0;
-  double residual = 0.0;
-  double energy = 0.0;  // incremental potential at the end of the step
-  double assembly_seconds = 0.0, solve_seconds = 0.0;
-  std::string failure;
 };
 
 class TimeStepper {
@@ -54,7 +45,7 @@ class TimeStepper {
   // Advances positions x and velocities v by one time step, from frame0 to frame1 (fractional
   // frame numbers: what boundary motions and obstacle paths are functions of). On failure x
   // and v are left at the step's start.
-  StepReport step(Eigen::VectorXd& x, Eigen::VectorXd& v, double frame0, double frame1, LinearSolver& linear,
+  StepStats step(Eigen::VectorXd& x, Eigen::VectorXd& v, double frame0, double frame1, LinearSolver& linear,
                   const std::function<void(const NewtonIterate&)>& progress = {});
 
  private:

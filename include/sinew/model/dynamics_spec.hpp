@@ -15,7 +15,7 @@ namespace sinew {
 struct DynamicsSpec {
   double time_step = 0.0;  // seconds per frame
   int substeps = 1;        // time steps per frame (h = time_step / substeps)
-  Integrator integrator = Integrator::BackwardEuler;
+  DynamicsScheme integrator = DynamicsScheme::BackwardEuler;
   MassKind mass = MassKind::Lumped;
   double rayleigh_alpha = 0.0, rayleigh_beta = 0.0;  // D = alpha M + beta K
   Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();

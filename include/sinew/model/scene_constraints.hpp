@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "sinew/integrator/constrained_stepper.hpp"
+#include "sinew/integrator/energy_limited_stepper.hpp"
 
 namespace sinew {
 
@@ -16,7 +16,7 @@ class JsonObject;
 struct ConstraintsSpec {
   std::string model = "corotational";  // "corotational" (paper 001 §3) | "material" (the scene's material)
   double contact_margin = 0.01;  // boundary vertices closer than this to an obstacle become candidates (m)
-  ConstrainedStepSettings step;  // energy limit, PGS and SQP settings; time_step = dynamics h
+  EnergyLimitedStepSettings step;  // energy limit, PGS and SQP settings; time_step = dynamics h
 };
 
 // Strict reader: unknown keys, wrong types, non-finite or out-of-range numbers are sinew::Errors

@@ -1,32 +1,24 @@
 #pragma once
-// Runs a scene: quasistatic load stepping over frames, each frame a projected-Newton solve
-// started from the previous frame's solution, with outputs written atomically per frame and
-// a checkpoint so an interrupted run can be resumed.
+// Runs a scene: builds its model (model/model.hpp) and advances it frame by frame with its
+// integrator (quasistatic, backward Euler, semi-implicit or energy-limited: one frame loop for
+// all), writing each frame's outputs atomically (frame_output.hpp), summary.json
+// (run_summary.hpp) and a checkpoint (checkpoint.hpp) so an interrupted run can be resumed.
 #include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "sinew/element/discretization.hpp"
-#include "sinew/mesh/surface.hpp"
+#include "sinew/integrator/integrator.hpp"
 #include "sinew/model/scene.hpp"
 
 namespace sinew {
 
-// When Newton fails on a frame's whole boundary motion, the step is halved, down to
-// 1/2^kMaxMotionSplits of the frame, before the frame is declared unconverged.
-inline constexpr int kMaxMotionSplits = 6;
-
-struct FrameRecord {
+// A frame's stats (iterations, residual, times, the integrator's counters) and what was measured
+// on its final state.
+struct FrameRecord : StepStats {
   int frame = 0;
-  bool converged = false;
-  int newton_iterations = 0;
-  int linear_iterations = 0;
-  int substeps = 1;  // converged solves; > 1 when the frame's boundary motion had to be split
-                     // (dynamics: completed time steps)
-  double residual = 0.0;
-  double energy = 0.0;
+  double time = 0.0;  // simulated seconds at the frame's end (quasistatic runs: the frame number)
   double volume = 0.0;
   double min_J = 0.0;
   // Force each boundary condition (scene order) exerts on the body: the measured force of a
@@ -34,16 +26,12 @@ struct FrameRecord {
   std::vector<Eigen::Vector3d> reactions;
   // Energies of the frame's state (kinetic is zero in quasistatics) and obstacle contact.
   double kinetic_energy = 0.0, potential_energy = 0.0;
-  int contacts = 0;               // penetrating (boundary vertex, obstacle) pairs
-  double max_penetration = 0.0;  // deepest penetration into an obstacle
+  int contacts = 0;               // penetrating (boundary vertex, obstacle) pairs (penalty contact)
+  double max_penetration = 0.0;  // deepest penetration into an obstacle (penalty contact)
   // Self-contact (reference-map penalty): samples held by a contact spring, and the deepest
   // surface sample found inside the body at the frame's state (0 without self-contact).
   int self_contacts = 0;
   double self_penetration = 0.0;
-  double seconds = 0.0;
-  double assembly_seconds = 0.0;
-  double solve_seconds = 0.0;
-  std::string failure;
 };
 
 struct ProgressEvent {
@@ -71,13 +59,6 @@ struct RunSummary {
   Eigen::VectorXd x;                // final positions
   bool all_converged() const;
 };
-
-// The scene's constant external nodal forces (x[3 v + i] layout): gravity on the lumped masses,
-// point loads (the force on each selected vertex), and tractions (force per rest area on the
-// boundary faces whose vertices are all selected, distributed as t * integral of N_a over the
-// face). Throws a sinew::Error naming the load's JSON path if a selection is empty or a
-// traction selects no face.
-Eigen::VectorXd external_forces(const Scene& scene, const Discretization& disc, const BoundarySurface& surface);
 
 // Builds and validates the whole model (mesh, material, selections, loads) before writing
 // anything; a fresh run then replaces the files of an earlier run in out_dir. The run stops

@@ -1,10 +1,15 @@
 #pragma once
-// Corotational linear hexahedra (paper 001 §3): Hookean stiffness K_e integrated by 2x2x2 Gauss
-// (Eq. 10), one rotation per element from the polar decomposition of the deformation gradient
-// of the hexahedron's innermost tetrahedron (Fig. 2), stiffness warped as R K_e R^T.
+// Corotational linear hexahedra (paper 001 §3) as a form: Hookean stiffness K_e integrated by
+// 2x2x2 Gauss (Eq. 10), one rotation per element from the polar decomposition of the deformation
+// gradient of the hexahedron's innermost tetrahedron (Fig. 2), stiffness warped as R K_e R^T.
+// As in corotational FEM (and paper 001 Eq. 17), the form's gradient is the warped elastic force
+// and its Hessian the warped stiffness: both hold the rotation fixed, so they are not the exact
+// derivatives of the energy (exact_derivatives() is false); the exact element gradient is
+// element_gradient(e, x, JacobianKind::Exact).
+#include <memory>
 #include <vector>
 
-#include "sinew/forms/element_energy_model.hpp"
+#include "sinew/forms/element_form.hpp"
 #include "sinew/material/lame.hpp"
 
 namespace sinew {
@@ -21,9 +26,9 @@ struct HookeCoefficients {
 // face of the hexahedron and so sees all of its deformation modes.
 inline constexpr int kInnermostTet[4] = {0, 2, 5, 7};
 
-class CorotationalHex final : public ElementEnergyModel {
+class CorotationalHexForm final : public ElementForm {
  public:
-  CorotationalHex(std::shared_ptr<const Discretization> disc, HookeCoefficients coefficients);
+  CorotationalHexForm(std::shared_ptr<const Discretization> disc, HookeCoefficients coefficients);
 
   std::string name() const override { return "corotational-hex"; }
   const Discretization& discretization() const override { return *disc_; }
@@ -35,28 +40,24 @@ class CorotationalHex final : public ElementEnergyModel {
   const Eigen::MatrixXd& element_stiffness(Eigen::Index e) const { return K_[e]; }
 
   // U_e = sum_q w_q psi(eps_q), eps = sym(R^T G - I) (Eq. 11, 13), psi = 1/2 eps : C : eps.
-  double element_energy(Eigen::Index e, const Eigen::VectorXd& x) const override;
-  Eigen::VectorXd element_energy_gradient(Eigen::Index e, const Eigen::VectorXd& x,
-                                          JacobianKind kind) const override;
+  double element_value(Eigen::Index e, const Eigen::VectorXd& x) const override;
+  Eigen::VectorXd element_gradient(Eigen::Index e, const Eigen::VectorXd& x, JacobianKind kind) const override;
   bool supports(JacobianKind) const override { return true; }
   // R K_e R^T (the rotation's change neglected, as in the warped stiffness).
-  Eigen::MatrixXd element_energy_hessian(Eigen::Index e, const Eigen::VectorXd& x) const override;
+  Eigen::MatrixXd element_hessian(Eigen::Index e, const Eigen::VectorXd& x) const override;
 
-  // f = -sum_e R K_e (R^T x_e - X_e) and K = sum_e R K_e R^T (the usual warped stiffness).
-  Eigen::VectorXd forces(const Eigen::VectorXd& x) const override;
-  Eigen::SparseMatrix<double> stiffness(const Eigen::VectorXd& x) const override;
-  // One rotation per element for both (what a time step needs at its start).
-  void forces_and_stiffness(const Eigen::VectorXd& x, Eigen::VectorXd& f, Eigen::SparseMatrix<double>& K) const override;
+  // Form: E = sum_e U_e; gradient sum_e R K_e (R^T x_e - X_e) (the warped force, Eq. 17);
+  // Hessian sum_e R K_e R^T.
+  double value(const Eigen::VectorXd& x) const override;
+  void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
+  void add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override;
+  bool exact_derivatives() const override { return false; }
 
  private:
   std::shared_ptr<const Discretization> disc_;
   HookeCoefficients c_;
   std::vector<Eigen::MatrixXd> K_;
-  Eigen::VectorXd rest_;  // rest positions X
-  // The stiffness pattern, built once, and per element the value slot of each of its 24 x 24
-  // entries (column-major), so assembling R K_e R^T is a scatter without sorting.
-  Eigen::SparseMatrix<double> pattern_;
-  std::vector<std::vector<int>> slots_;
+  Eigen::VectorXd rest_;                // rest positions X
   std::vector<Mat3> tet_rest_inverse_;  // (X_2 - X_0, X_5 - X_0, X_7 - X_0)^-1 per element
 };
 

@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "sinew/assembly/problem.hpp"
 #include "sinew/constraints/contact_constraints.hpp"
 #include "sinew/constraints/energy_limit.hpp"
 #include "sinew/solver/lagged_factorization.hpp"
@@ -34,7 +35,7 @@
 
 namespace sinew {
 
-struct ConstrainedStepSettings {
+struct EnergyLimitedStepSettings {
   double time_step = 0.01;
   std::optional<EnergyLimit> energy_limit;
   // Elements with U_e >= (1 - activation) U_max enter the LCP (the others cannot reach the
@@ -47,7 +48,7 @@ struct ConstrainedStepSettings {
   FactorizationReuse reuse;
 };
 
-struct ConstrainedStepReport {
+struct EnergyLimitedStepReport {
   bool converged = false;          // SQP met both nonlinear tolerances
   int pgs_unconverged = 0;         // LCP solves that stopped at the PGS iteration cap
   int sqp_iterations = 0;          // LCP solves (0: the unconstrained step already satisfied all)
@@ -68,7 +69,7 @@ struct ConstrainedStepReport {
 };
 
 // A run's or a frame's step reports summed up (the benchmark, the tests and summary.json).
-struct ConstrainedStepTotals {
+struct EnergyLimitedStepTotals {
   int steps = 0, sqp_iterations = 0, pgs_iterations = 0, unconverged_steps = 0;
   int max_sqp_iterations = 0, max_active_energy = 0, max_active_contacts = 0;
   int factorizations = 0, cg_iterations = 0, splitting_iterations = 0;
@@ -84,20 +85,30 @@ struct ConstrainedStepTotals {
   double seconds = 0.0, max_energy_violation = 0.0, max_element_energy = 0.0;
   double max_pgs_residual = 0.0, max_penetration = 0.0;
   double ms_per_step() const { return steps ? 1e3 * seconds / steps : 0.0; }
-  void add(const ConstrainedStepReport& r);
+  void add(const EnergyLimitedStepReport& r);
 };
 
-class ConstrainedStepper {
+class EnergyLimitedStepper {
  public:
-  // `masses`: lumped nodal masses per vertex; `external`: constant external forces (3V);
-  // `fixed`: per DOF, 1 where the velocity is held at zero; `contacts` may be empty.
-  ConstrainedStepper(std::shared_ptr<const ElementEnergyModel> model, Eigen::VectorXd masses,
-                     Eigen::VectorXd external, std::vector<char> fixed, ContactProvider contacts,
-                     ConstrainedStepSettings settings);
-  ~ConstrainedStepper();
+  // `potential`: the potential energy as a sum of forms (elastic, loads, bone springs, ...) over
+  // all DOFs, without Dirichlet DOFs of its own (the stepper prescribes velocities instead);
+  // `limited`: the element form whose element energies the energy limit bounds (one of
+  // potential's forms); `masses`: lumped nodal masses per vertex; `contacts` may be empty.
+  EnergyLimitedStepper(std::shared_ptr<Problem> potential, std::shared_ptr<const ElementForm> limited,
+                       Eigen::VectorXd masses, ContactProvider contacts, EnergyLimitedStepSettings settings);
+  // An elastic element form and constant external forces (3V); `fixed`: per DOF, 1 where the
+  // velocity is held at zero.
+  EnergyLimitedStepper(std::shared_ptr<ElementForm> elastic, Eigen::VectorXd masses, Eigen::VectorXd external,
+                       std::vector<char> fixed, ContactProvider contacts, EnergyLimitedStepSettings settings);
+  ~EnergyLimitedStepper();
 
-  // Advances (x, v) by one time step, from time() to time() + time_step.
-  ConstrainedStepReport step(Eigen::VectorXd& x, Eigen::VectorXd& v);
+  // Advances (x, v) by one time step, from time() to time() + time_step, with the DOFs of the
+  // constructor's `fixed` mask held at zero velocity.
+  EnergyLimitedStepReport step(Eigen::VectorXd& x, Eigen::VectorXd& v);
+  // The same with prescribed motion: DOFs flagged in `fixed` reach x_end at the step's end
+  // (velocity (x_end - x) / h over the step); the others are free.
+  EnergyLimitedStepReport step(Eigen::VectorXd& x, Eigen::VectorXd& v, const std::vector<char>& fixed,
+                               const Eigen::VectorXd& x_end);
 
   // Simulated time (s) at the start of the next step; moving obstacles are evaluated from it.
   double time() const { return time_; }
@@ -108,16 +119,17 @@ class ConstrainedStepper {
   const std::map<long, double>& multipliers() const { return multipliers_; }
   void set_multipliers(std::map<long, double> multipliers) { multipliers_ = std::move(multipliers); }
 
-  const ConstrainedStepSettings& settings() const { return settings_; }
-  const ElementEnergyModel& model() const { return *model_; }
+  const EnergyLimitedStepSettings& settings() const { return settings_; }
+  const ElementForm& limited_form() const { return *limited_; }
 
  private:
   struct Factorization;
-  std::shared_ptr<const ElementEnergyModel> model_;
-  Eigen::VectorXd mass_dofs_, external_;
-  std::vector<char> fixed_;
+  std::shared_ptr<Problem> potential_;
+  std::shared_ptr<const ElementForm> limited_;
+  Eigen::VectorXd mass_dofs_;
+  std::vector<char> fixed_;  // the default mask of step(x, v)
   ContactProvider contacts_;
-  ConstrainedStepSettings settings_;
+  EnergyLimitedStepSettings settings_;
   std::unique_ptr<Factorization> factor_;
   std::map<long, double> multipliers_;  // of the last step's final LCP, by constraint key
   double time_ = 0.0;

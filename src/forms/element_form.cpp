@@ -1,4 +1,4 @@
-#include "sinew/forms/element_energy_model.hpp"
+#include "sinew/forms/element_form.hpp"
 
 #include "sinew/core/error.hpp"
 
@@ -11,5 +11,14 @@ JacobianKind parse_jacobian_kind(const std::string& text) {
 }
 
 const char* to_string(JacobianKind kind) { return kind == JacobianKind::Exact ? "exact" : "warped"; }
+
+void ElementForm::couplings(std::vector<std::vector<int>>& cliques) const {
+  const auto& elements = discretization().mesh().elements;
+  for (Eigen::Index e = 0; e < elements.rows(); ++e) {
+    std::vector<int> c(static_cast<size_t>(elements.cols()));
+    for (Eigen::Index a = 0; a < elements.cols(); ++a) c[static_cast<size_t>(a)] = elements(e, a);
+    cliques.push_back(std::move(c));
+  }
+}
 
 }  // namespace sinew

@@ -1,11 +1,12 @@
-#include "sinew/integrator/constrained_stepper.hpp"
+#include "sinew/integrator/energy_limited_stepper.hpp"
 
 #include <chrono>
 #include <cmath>
 #include <map>
 
-#include "sinew/solver/lagged_factorization.hpp"
 #include "sinew/core/error.hpp"
+#include "sinew/forms/external_force_form.hpp"
+#include "sinew/solver/lagged_factorization.hpp"
 #include "sinew/solver/serial_openmp.hpp"
 
 #include <tbb/blocked_range.h>
@@ -48,7 +49,7 @@ struct Linearisation {
   double energy_violation = 0.0, max_energy = 0.0, penetration = 0.0;
 };
 
-Linearisation linearise_constraints(const ElementEnergyModel& model, const ConstrainedStepSettings& settings,
+Linearisation linearise_constraints(const ElementForm& model, const EnergyLimitedStepSettings& settings,
                                     const std::vector<char>& fixed, const ContactProvider& contacts, double time,
                                     const Eigen::VectorXd& x_k, const Eigen::VectorXd& v_k,
                                     const std::map<long, char>& ever_active) {
@@ -61,7 +62,7 @@ Linearisation linearise_constraints(const ElementEnergyModel& model, const Const
   // Element energies, and the Jacobians of the elements that get a row, in parallel.
   std::vector<double> energies(static_cast<size_t>(disc.num_elements()));
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, disc.num_elements(), 32), [&](const auto& range) {
-    for (Eigen::Index e = range.begin(); e < range.end(); ++e) energies[static_cast<size_t>(e)] = model.element_energy(e, x_k);
+    for (Eigen::Index e = range.begin(); e < range.end(); ++e) energies[static_cast<size_t>(e)] = model.element_value(e, x_k);
   });
   std::vector<Eigen::Index> limited;
   for (Eigen::Index e = 0; e < disc.num_elements(); ++e) {
@@ -128,11 +129,11 @@ Linearisation linearise_constraints(const ElementEnergyModel& model, const Const
 // a Lagrangian Hessian H (later iterations; A with the limit-active elements stiffened). Each
 // preconditions the matrices of its kind, which change slowly from step to step, while A and H
 // differ much more from each other.
-struct ConstrainedStepper::Factorization {
+struct EnergyLimitedStepper::Factorization {
   LaggedFactorization backward_euler, lagrangian;
 };
 
-void ConstrainedStepTotals::add(const ConstrainedStepReport& r) {
+void EnergyLimitedStepTotals::add(const EnergyLimitedStepReport& r) {
   ++steps;
   sqp_iterations += r.sqp_iterations;
   pgs_iterations += r.pgs_iterations;
@@ -161,58 +162,93 @@ void ConstrainedStepTotals::add(const ConstrainedStepReport& r) {
   max_penetration = std::max(max_penetration, r.penetration);
 }
 
-ConstrainedStepper::ConstrainedStepper(std::shared_ptr<const ElementEnergyModel> model, Eigen::VectorXd masses,
-                                       Eigen::VectorXd external, std::vector<char> fixed, ContactProvider contacts,
-                                       ConstrainedStepSettings settings)
-    : model_(std::move(model)),
-      external_(std::move(external)),
-      fixed_(std::move(fixed)),
+EnergyLimitedStepper::EnergyLimitedStepper(std::shared_ptr<Problem> potential, std::shared_ptr<const ElementForm> limited,
+                                           Eigen::VectorXd masses, ContactProvider contacts,
+                                           EnergyLimitedStepSettings settings)
+    : potential_(std::move(potential)),
+      limited_(std::move(limited)),
       contacts_(std::move(contacts)),
       settings_(settings),
       factor_(std::make_unique<Factorization>()) {
-  const Eigen::Index n = model_->discretization().num_dofs();
-  if (masses.size() * 3 != n || external_.size() != n || static_cast<Eigen::Index>(fixed_.size()) != n)
-    throw Error("masses, forces and fixed DOFs do not match the mesh", "constrained stepper");
-  if (!(settings_.time_step > 0.0)) throw Error("time step must be positive", "constrained stepper");
-  if (settings_.energy_limit && !model_->supports(settings_.energy_limit->jacobian))
-    throw Error(std::string("the ") + model_->name() + " model has no " + to_string(settings_.energy_limit->jacobian) +
+  const Eigen::Index n = limited_->discretization().num_dofs();
+  if (masses.size() * 3 != n || potential_->num_dofs() != n)
+    throw Error("masses and forms do not match the mesh", "energy-limited stepper");
+  if (!(settings_.time_step > 0.0)) throw Error("time step must be positive", "energy-limited stepper");
+  if (settings_.energy_limit && !limited_->supports(settings_.energy_limit->jacobian))
+    throw Error(std::string("the ") + limited_->name() + " model has no " + to_string(settings_.energy_limit->jacobian) +
                     " Jacobian",
-                "constrained stepper");
+                "energy-limited stepper");
+  fixed_.assign(static_cast<size_t>(n), 0);
+  potential_->set_fixed(fixed_);  // the raw Hessian: the stepper handles prescribed DOFs itself
   mass_dofs_.resize(n);
   for (Eigen::Index v = 0; v < masses.size(); ++v) mass_dofs_.segment<3>(3 * v).setConstant(masses(v));
 }
 
-ConstrainedStepper::~ConstrainedStepper() = default;
+namespace {
+std::shared_ptr<Problem> elastic_and_external(const std::shared_ptr<ElementForm>& elastic, const Eigen::VectorXd& external) {
+  auto p = std::make_shared<Problem>(elastic->discretization().mesh().num_vertices());
+  p->add_form(elastic);
+  if (external.size() != p->num_dofs()) throw Error("external forces do not match the mesh", "energy-limited stepper");
+  if (external.squaredNorm() > 0.0) p->add_form(std::make_shared<ExternalForceForm>(external));
+  return p;
+}
+}  // namespace
 
-ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
+EnergyLimitedStepper::EnergyLimitedStepper(std::shared_ptr<ElementForm> elastic, Eigen::VectorXd masses,
+                                           Eigen::VectorXd external, std::vector<char> fixed, ContactProvider contacts,
+                                           EnergyLimitedStepSettings settings)
+    : EnergyLimitedStepper(elastic_and_external(elastic, external), elastic, std::move(masses), std::move(contacts),
+                           settings) {
+  if (static_cast<Eigen::Index>(fixed.size()) != potential_->num_dofs())
+    throw Error("fixed DOFs do not match the mesh", "energy-limited stepper");
+  fixed_ = std::move(fixed);
+}
+
+EnergyLimitedStepper::~EnergyLimitedStepper() = default;
+
+EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  return step(x, v, fixed_, x);
+}
+
+EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v, const std::vector<char>& fixed,
+                                                   const Eigen::VectorXd& x_end) {
   const auto t_step = Clock::now();
   const SerialOpenMpScope serial_cholmod;
-  ConstrainedStepReport report;
+  EnergyLimitedStepReport report;
   const double h = settings_.time_step;
-  const Discretization& disc = model_->discretization();
+  const Discretization& disc = limited_->discretization();
   const auto& elements = disc.mesh().elements;
   const Eigen::Index n = x.size();
   const Eigen::VectorXd x0 = x;
+  if (static_cast<Eigen::Index>(fixed.size()) != n || x_end.size() != n)
+    throw Error("fixed DOFs or prescribed positions do not match the mesh", "energy-limited stepper");
+  // Prescribed velocities of the fixed DOFs over the step (zero for a pinned DOF).
+  Eigen::VectorXd v_fixed = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (fixed[i]) v_fixed(i) = (x_end(i) - x0(i)) / h;
+  potential_->begin_solve(x0);  // forms with lagged state (self-contact targets) take this step's
 
   // ---- unconstrained backward Euler (Eq. 19): (M + h^2 K) v* = M v0 + h f(x0)
-  Eigen::SparseMatrix<double> A;
-  Eigen::VectorXd f0;
-  model_->forces_and_stiffness(x0, f0, A);
+  // The potential's raw Hessian K and forces f = -grad E at x0; the prescribed velocities are
+  // lifted to the right-hand side (b -= A v_fixed) before their rows and columns become identity.
+  Eigen::SparseMatrix<double> A = *potential_->hessian(x0).matrix();
+  const Eigen::VectorXd f0 = -potential_->gradient(x0);
   A *= h * h;
-  Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * (f0 + external_);
+  Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * f0;
+  if (v_fixed.squaredNorm() > 0.0) b -= A * v_fixed + mass_dofs_.cwiseProduct(v_fixed);
   // A = M + h^2 K in K's own storage: rows and columns of fixed DOFs become identity rows.
   Eigen::Index diagonal_found = 0;
   for (Eigen::Index k = 0; k < A.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      if (fixed_[it.row()] || fixed_[it.col()]) it.valueRef() = 0.0;
+      if (fixed[it.row()] || fixed[it.col()]) it.valueRef() = 0.0;
       if (it.row() == it.col()) {
-        it.valueRef() += fixed_[k] ? 1.0 : mass_dofs_(k);
+        it.valueRef() += fixed[k] ? 1.0 : mass_dofs_(k);
         ++diagonal_found;
       }
     }
   if (diagonal_found != n) throw Error("a vertex belongs to no element", "constrained stepper");
   for (Eigen::Index i = 0; i < n; ++i)
-    if (fixed_[i]) b(i) = 0.0;
+    if (fixed[i]) b(i) = v_fixed(i);
   const FactorizationReuse& reuse = settings_.reuse;
 
   // The matrix of the current SQP iteration (A, or H from the second on) and the lagged
@@ -244,7 +280,7 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
   auto t_lcp = Clock::now();
   for (int k = 0;; ++k) {
     const Eigen::VectorXd x_k = x0 + h * v_k;
-    const Linearisation lin = linearise_constraints(*model_, settings_, fixed_, contacts_, time_, x_k, v_k, ever_active);
+    const Linearisation lin = linearise_constraints(*limited_, settings_, fixed, contacts_, time_, x_k, v_k, ever_active);
     const std::vector<Row>& rows = lin.rows;
     const double energy_violation = lin.energy_violation;
     const double penetration = lin.penetration;
@@ -264,13 +300,13 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
     if (limit) {
       for (const auto& [key, lambda_e] : warm) {
         if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
-        const Eigen::MatrixXd He = model_->element_energy_hessian(key, x_k) * (h * lambda_e / limit->max_energy);
+        const Eigen::MatrixXd He = limited_->element_hessian(key, x_k) * (h * lambda_e / limit->max_energy);
         for (int a = 0; a < disc.nodes(); ++a)
           for (int o = 0; o < disc.nodes(); ++o)
             for (int i = 0; i < 3; ++i)
               for (int j = 0; j < 3; ++j) {
                 const Eigen::Index r = 3 * elements(key, a) + i, c = 3 * elements(key, o) + j;
-                if (!fixed_[r] && !fixed_[c]) extra.emplace_back(r, c, He(3 * a + i, 3 * o + j));
+                if (!fixed[r] && !fixed[c]) extra.emplace_back(r, c, He(3 * a + i, 3 * o + j));
               }
       }
     }
@@ -416,7 +452,13 @@ ConstrainedStepReport ConstrainedStepper::step(Eigen::VectorXd& x, Eigen::Vector
   report.cg_iterations = counters.cg_iterations;
   report.factor_seconds = counters.factor_seconds;
   report.solve_seconds = counters.solve_seconds;
+  // Prescribed DOFs end exactly where their motion puts them (the solves above hold them only to
+  // the CG tolerance).
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (fixed[i]) v(i) = v_fixed(i);
   x = x0 + h * v;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (fixed[i]) x(i) = x_end(i);
   time_ += h;
   report.seconds = since(t_step);
   return report;

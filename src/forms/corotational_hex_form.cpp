@@ -1,9 +1,10 @@
-#include "sinew/forms/corotational_hex.hpp"
+#include "sinew/forms/corotational_hex_form.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "sinew/core/error.hpp"
 #include "sinew/core/svd.hpp"
@@ -24,7 +25,7 @@ HookeCoefficients HookeCoefficients::from_young_poisson(double young, double poi
   return {s * (1.0 - poisson), s * poisson, young / (2.0 * (1.0 + poisson))};
 }
 
-CorotationalHex::CorotationalHex(std::shared_ptr<const Discretization> disc, HookeCoefficients coefficients)
+CorotationalHexForm::CorotationalHexForm(std::shared_ptr<const Discretization> disc, HookeCoefficients coefficients)
     : disc_(std::move(disc)), c_(coefficients) {
   const Discretization& d = *disc_;
   if (d.mesh().kind != ElementKind::Hex8) throw Error("corotational hexahedra need a hexahedral mesh", "corotational");
@@ -49,36 +50,13 @@ CorotationalHex::CorotationalHex(std::shared_ptr<const Discretization> disc, Hoo
     K_[e] = K;
     tet_rest_inverse_[e] = tet_edges(d.element_positions(e, X)).inverse();
   }
-  // Stiffness pattern: every DOF pair of every element.
-  const auto& elements = d.mesh().elements;
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<size_t>(d.num_elements()) * 576);
-  for (Eigen::Index e = 0; e < d.num_elements(); ++e)
-    for (int c = 0; c < 24; ++c)
-      for (int r = 0; r < 24; ++r) t.emplace_back(3 * elements(e, r / 3) + r % 3, 3 * elements(e, c / 3) + c % 3, 0.0);
-  pattern_.resize(d.num_dofs(), d.num_dofs());
-  pattern_.setFromTriplets(t.begin(), t.end());
-  pattern_.makeCompressed();
-  slots_.resize(d.num_elements());
-  for (Eigen::Index e = 0; e < d.num_elements(); ++e) {
-    slots_[e].resize(576);
-    for (int c = 0; c < 24; ++c) {
-      const int col = 3 * elements(e, c / 3) + c % 3;
-      const int* begin = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col];
-      const int* end = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col + 1];
-      for (int r = 0; r < 24; ++r) {
-        const int row = 3 * elements(e, r / 3) + r % 3;
-        slots_[e][c * 24 + r] = static_cast<int>(std::lower_bound(begin, end, row) - pattern_.innerIndexPtr());
-      }
-    }
-  }
 }
 
-Mat3 CorotationalHex::rotation(Eigen::Index e, const Eigen::VectorXd& x) const {
+Mat3 CorotationalHexForm::rotation(Eigen::Index e, const Eigen::VectorXd& x) const {
   return polar_rotation(tet_edges(disc_->element_positions(e, x)) * tet_rest_inverse_[e]);
 }
 
-double CorotationalHex::element_energy(Eigen::Index e, const Eigen::VectorXd& x) const {
+double CorotationalHexForm::element_value(Eigen::Index e, const Eigen::VectorXd& x) const {
   const Discretization& d = *disc_;
   const Eigen::Matrix3Xd xe = d.element_positions(e, x);
   const Mat3 Rt = rotation(e, x).transpose();
@@ -92,7 +70,7 @@ double CorotationalHex::element_energy(Eigen::Index e, const Eigen::VectorXd& x)
   return U;
 }
 
-Eigen::VectorXd CorotationalHex::element_energy_gradient(Eigen::Index e, const Eigen::VectorXd& x,
+Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eigen::VectorXd& x,
                                                          JacobianKind kind) const {
   const Discretization& d = *disc_;
   const Eigen::Matrix3Xd xe = d.element_positions(e, x);
@@ -127,7 +105,7 @@ Eigen::VectorXd CorotationalHex::element_energy_gradient(Eigen::Index e, const E
   return g;
 }
 
-Eigen::MatrixXd CorotationalHex::element_energy_hessian(Eigen::Index e, const Eigen::VectorXd& x) const {
+Eigen::MatrixXd CorotationalHexForm::element_hessian(Eigen::Index e, const Eigen::VectorXd& x) const {
   const Mat3 R = rotation(e, x);
   Eigen::MatrixXd H(24, 24);
   for (int a = 0; a < 8; ++a)
@@ -135,59 +113,48 @@ Eigen::MatrixXd CorotationalHex::element_energy_hessian(Eigen::Index e, const Ei
   return H;
 }
 
+double CorotationalHexForm::value(const Eigen::VectorXd& x) const {
+  // Deterministic reduction: the same x gives bit-identical energies.
+  return tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<Eigen::Index>(0, disc_->num_elements(), 64), 0.0,
+      [&](const tbb::blocked_range<Eigen::Index>& r, double acc) {
+        for (Eigen::Index e = r.begin(); e != r.end(); ++e) acc += element_value(e, x);
+        return acc;
+      },
+      std::plus<double>());
+}
+
 // Element terms are computed in parallel into per-element buffers and scattered serially, so
 // the sums are the same whatever the thread count.
-Eigen::VectorXd CorotationalHex::forces(const Eigen::VectorXd& x) const {
+void CorotationalHexForm::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;
-  std::vector<Eigen::Matrix<double, 24, 1>> g(static_cast<size_t>(d.num_elements()));
+  std::vector<Eigen::Matrix<double, 24, 1>> ge(static_cast<size_t>(d.num_elements()));
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, d.num_elements(), 32), [&](const auto& range) {
     for (Eigen::Index e = range.begin(); e < range.end(); ++e)
-      g[static_cast<size_t>(e)] = element_energy_gradient(e, x, JacobianKind::Warped);
+      ge[static_cast<size_t>(e)] = element_gradient(e, x, JacobianKind::Warped);
   });
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(x.size());
   for (Eigen::Index e = 0; e < d.num_elements(); ++e)
-    for (int a = 0; a < 8; ++a) f.segment<3>(3 * elements(e, a)) -= g[static_cast<size_t>(e)].segment<3>(3 * a);
-  return f;
+    for (int a = 0; a < 8; ++a) g.segment<3>(3 * elements(e, a)) += ge[static_cast<size_t>(e)].segment<3>(3 * a);
 }
 
-Eigen::SparseMatrix<double> CorotationalHex::stiffness(const Eigen::VectorXd& x) const {
-  Eigen::VectorXd f;
-  Eigen::SparseMatrix<double> K;
-  forces_and_stiffness(x, f, K);
-  return K;
-}
-
-void CorotationalHex::forces_and_stiffness(const Eigen::VectorXd& x, Eigen::VectorXd& f,
-                                           Eigen::SparseMatrix<double>& K) const {
+// Elements of one colour share no vertex, so their blocks are added in parallel.
+void CorotationalHexForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const {
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;
-  std::vector<Eigen::Matrix<double, 24, 24>> blocks(static_cast<size_t>(d.num_elements()));
-  std::vector<Eigen::Matrix<double, 24, 1>> forces(static_cast<size_t>(d.num_elements()));
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, d.num_elements(), 16), [&](const auto& range) {
-    for (Eigen::Index e = range.begin(); e < range.end(); ++e) {
-      const Eigen::Matrix3Xd xe = d.element_positions(e, x);
-      const Eigen::Matrix3Xd Xe = d.element_positions(e, rest_);
-      const Mat3 R = polar_rotation(tet_edges(xe) * tet_rest_inverse_[e]);
-      const Eigen::Matrix<double, 24, 24> Ke = K_[e];
-      Eigen::Matrix<double, 24, 1> disp;
-      for (int a = 0; a < 8; ++a) disp.segment<3>(3 * a) = R.transpose() * xe.col(a) - Xe.col(a);
-      const Eigen::Matrix<double, 24, 1> fe = Ke * disp;  // rest-frame forces (Eq. 17, R fixed)
-      Eigen::Matrix<double, 24, 24>& B = blocks[static_cast<size_t>(e)];
-      for (int a = 0; a < 8; ++a) {
-        forces[static_cast<size_t>(e)].segment<3>(3 * a) = R * fe.segment<3>(3 * a);
-        for (int b = 0; b < 8; ++b) B.block<3, 3>(3 * a, 3 * b) = R * Ke.block<3, 3>(3 * a, 3 * b) * R.transpose();
+  for (const auto& group : d.color_groups()) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, group.size(), 16), [&](const auto& r) {
+      for (size_t idx = r.begin(); idx != r.end(); ++idx) {
+        const Eigen::Index e = group[idx];
+        const Mat3 R = rotation(e, x);
+        const Eigen::MatrixXd& Ke = K_[e];
+        for (int b = 0; b < 8; ++b)
+          for (int a = 0; a < 8; ++a) {
+            const int va = elements(e, a), vb = elements(e, b);
+            H.add_block_at_slot(vb, H.slot(va, vb), R * Ke.block<3, 3>(3 * a, 3 * b) * R.transpose());
+          }
       }
-    }
-  });
-  f = Eigen::VectorXd::Zero(x.size());
-  K = pattern_;
-  double* values = K.valuePtr();
-  for (Eigen::Index e = 0; e < d.num_elements(); ++e) {
-    for (int a = 0; a < 8; ++a) f.segment<3>(3 * elements(e, a)) -= forces[static_cast<size_t>(e)].segment<3>(3 * a);
-    const std::vector<int>& slot = slots_[e];
-    const double* B = blocks[static_cast<size_t>(e)].data();  // column-major 24 x 24, as slot is indexed
-    for (int k = 0; k < 576; ++k) values[slot[k]] += B[k];
+    });
   }
 }
 
