@@ -36,10 +36,10 @@ json scene_with(const json& mesh) {
 // ---- sizes from input: checked 64-bit products and one cell limit on every path ----
 
 TEST(HostileInput, VoxelDimsWhoseIntProductWrapsAreRejected) {
-  // 641 * 6700417 = 2^32 + 1: as an int product it wrapped to 1, matched the one occupancy entry,
-  // and the lattice then read 4.3e9 cells from a list of one.
+  // 603 * 683 * 20857 = 2 * 2^32 + 1: as an int product it wrapped to 1, matched the one occupancy
+  // entry, and the lattice then read 8.6e9 cells from a list of one.
   const std::string m = error_message([] {
-    parse_scene(scene_with({{"voxels", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}, {"dims", {641, 6700417, 1}},
+    parse_scene(scene_with({{"voxels", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}, {"dims", {603, 683, 20857}},
                                         {"occupancy", {1}}}}}),
                 "wrap.json");
   });
@@ -55,7 +55,7 @@ TEST(HostileInput, VoxelDimsWhoseIntProductWrapsAreRejected) {
 
 TEST(HostileInput, CellCountsOverTheLimitAreRejectedOnEveryPath) {
   expect_contains(error_message([] {
-                    parse_scene(scene_with({{"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}, {"cells", {2000000000, 2000000000, 2}}}),
+                    parse_scene(scene_with({{"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}, {"cells", {1000000, 1000000, 2}}}),
                                 "cells.json");
                   }),
                   {"cells.json", "/mesh/cells", "limit"});
