@@ -86,28 +86,34 @@ LOCATION = re.compile(r"(: /|\.json: |:\d+|--[a-z])")
 
 
 def check(sinew, scene, out, frames, timeout, threads):
-    """None when the run behaved, else the reason it did not."""
+    """(exit code, None) when the run behaved, else (exit code, the reason it did not)."""
+    rc, reason = run_one(sinew, scene, out, frames, timeout, threads)
+    return rc, reason
+
+
+def run_one(sinew, scene, out, frames, timeout, threads):
     cmd = [sinew, "run", scene, "--out", out, "--frames", str(frames), "--threads", str(threads), "--quiet"]
     try:
         r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout,
                            env=dict(os.environ, OMP_NUM_THREADS="1"))
     except subprocess.TimeoutExpired:
-        return f"still running after {timeout} s (a hang)"
-    if r.returncode < 0:
-        return f"killed by signal {signal.Signals(-r.returncode).name}: {r.stderr[-2000:]}"
-    if r.returncode not in (0, 2, 3):
-        return f"exit code {r.returncode}: {r.stderr[-2000:]}"
-    if r.returncode == 2:
+        return "hang", f"still running after {timeout} s (a hang)"
+    rc = r.returncode
+    if rc < 0:
+        return rc, f"killed by signal {signal.Signals(-rc).name}: {r.stderr[-2000:]}"
+    if rc not in (0, 2, 3):
+        return rc, f"exit code {rc}: {r.stderr[-2000:]}"
+    if rc == 2:
         lines = [l for l in r.stderr.splitlines() if l.strip()]
         if not lines:
-            return "exit 2 with no error message"
+            return rc, "exit 2 with no error message"
         for line in lines:
             if "internal error" in line:
-                return f"an internal error: {line}"
+                return rc, f"an internal error: {line}"
             names_file = os.path.basename(scene) in line or re.search(r"\.(json|obj|off|ply|stl|vtk|vtu|mesh|msh|node|ele)\b", line)
             if line.startswith("sinew: error:") and not (names_file and LOCATION.search(line)):
-                return f"an error line naming no file and location: {line}"
-    return None
+                return rc, f"an error line naming no file and location: {line}"
+    return rc, None
 
 
 def main():
@@ -151,17 +157,19 @@ def main():
                 f.write(new_text)
             jobs.append((i, name, desc, target))
         failures = []
+        codes = {}
         with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
             futures = {pool.submit(check, args.sinew, t, os.path.join(work, f"out{i}"), args.frames, args.timeout, 1):
                        (i, n, d) for i, n, d, t in jobs}
             for fut in concurrent.futures.as_completed(futures):
                 i, n, d = futures[fut]
-                reason = fut.result()
+                rc, reason = fut.result()
+                codes[rc] = codes.get(rc, 0) + 1
                 shutil.rmtree(os.path.join(work, f"out{i}"), ignore_errors=True)
                 if reason:
                     failures.append(f"mutation {i} of {n} ({d}): {reason}")
         print(f"{len(jobs)} mutations of {len(scenes)} example scenes (seed {args.seed}, {args.frames} frame(s)): "
-              f"{len(failures)} failed")
+              f"{len(failures)} failed; exit codes {dict(sorted(codes.items(), key=str))}")
         for f in sorted(failures):
             print("FAIL:", f)
         sys.exit(1 if failures else 0)
