@@ -16,8 +16,9 @@ void check_lattice_cells(const Eigen::Vector3i& cells, const std::string& where)
   for (int i = 0; i < 3; ++i) {
     total *= cells(i);  // each factor <= INT_MAX and the running product <= the limit: no overflow
     if (total > kMaxLatticeCells)
-      throw Error(fmt::format("({}, {}, {}) would make {:.3g} cells (the limit is {})", cells(0), cells(1), cells(2),
-                              double(cells(0)) * double(cells(1)) * double(cells(2)), kMaxLatticeCells),
+      throw Error(fmt::format("would make {:.3g} cells ({} x {} x {}; the limit is {})",
+                              double(cells(0)) * double(cells(1)) * double(cells(2)), cells(0), cells(1), cells(2),
+                              kMaxLatticeCells),
                   where);
   }
 }
