@@ -170,7 +170,8 @@ ExperimentRun run_experiment(const Scene& scene, const ExperimentOptions& option
   problem.add_form(elastic);
   std::vector<KinematicCondition> kinematics;
   for (const auto& b : scene.boundary)
-    kinematics.push_back({select_vertices(mesh.vertices, b.select, where + ": boundary " + b.name), b.motion});
+    kinematics.push_back({select_vertices(mesh.vertices, b.select, where + ": boundary " + b.name), b.motion,
+                          where + ": boundary " + b.name + " motion"});
   auto linear = make_linear_solver(scene.solver.linear);
 
   ExperimentRun run;

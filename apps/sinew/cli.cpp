@@ -233,6 +233,14 @@ std::string describe_material_text(const MaterialSpec& spec, const BuiltMaterial
   return out;
 }
 
+void require_finite(const Eigen::MatrixXd& values, const std::string& what, const std::string& where) {
+  if (values.allFinite()) return;
+  throw Error(fmt::format("{} is not finite here (the material's formulas overflow or are undefined at this "
+                          "deformation)",
+                          what),
+              where);
+}
+
 nlohmann::json rows_json(const Eigen::MatrixXd& m) {
   nlohmann::json rows = nlohmann::json::array();
   for (Eigen::Index r = 0; r < m.rows(); ++r) {

@@ -54,6 +54,9 @@ std::string format_parameters(const MaterialParameters& p);
 
 // A matrix as a JSON array of rows, and as aligned text rows.
 nlohmann::json rows_json(const Eigen::MatrixXd& m);
+// Throws a sinew::Error (context `where`) unless every entry of `values` is finite: a result
+// that overflowed (det F = 1e-200) is an error, never a NaN printed with exit code 0.
+void require_finite(const Eigen::MatrixXd& values, const std::string& what, const std::string& where);
 std::string rows_text(const Eigen::MatrixXd& m, const std::string& indent = "  ");
 
 }  // namespace sinew::cli

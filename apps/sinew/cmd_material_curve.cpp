@@ -60,6 +60,9 @@ Command add_material_curve_command(CLI::App& material) {
     const auto curve =
         stress_stretch_curve(*built.material, mode, from, to, static_cast<int>(steps));
     const char* stress_name = mode == CurveMode::Shear ? "P01" : "P00";
+    for (const auto& p : curve)
+      require_finite(Eigen::Vector4d(p.lateral, p.J, p.stress, p.psi), "the stress, energy or lateral stretch",
+                     fmt::format("--stretch-from/--stretch-to (at stretch {:.6g})", p.stretch));
     if (o->json) {
       nlohmann::json j;
       j["material"] = describe_material(spec, built);

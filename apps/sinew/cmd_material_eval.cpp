@@ -66,6 +66,13 @@ Command add_material_eval_command(CLI::App& material) {
     }
     Vec9 eigenvalues = es.values;
     std::sort(eigenvalues.data(), eigenvalues.data() + 9);
+    const std::string at = fmt::format("--F (J = {:.6g})", F.determinant());
+    require_finite(Eigen::Matrix<double, 1, 1>(F.determinant()), "J = det F", at);
+    require_finite(Eigen::Matrix<double, 1, 1>(e.psi), "psi", at);
+    require_finite(e.P, "P", at);
+    require_finite(H, "the Hessian", at);
+    require_finite(e.hessian, "the projected Hessian", at);
+    require_finite(eigenvalues, "a Hessian eigenvalue", at);
 
     if (o->json) {
       nlohmann::json j;

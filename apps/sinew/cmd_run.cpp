@@ -5,6 +5,7 @@
 #include <chrono>
 #include <fmt/format.h>
 #include <memory>
+#include <new>
 #include <tbb/global_control.h>
 #include <unistd.h>
 
@@ -91,7 +92,16 @@ Command add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)");
   cmd->add_flag("--quiet", opts->quiet, "no progress output");
   cmd->add_flag("--resume", opts->resume, "continue from the output folder's checkpoint");
-  return {cmd, [opts, &exit_code] { run(*opts, exit_code); }};
+  return {cmd, [opts, &exit_code] {
+            try {
+              run(*opts, exit_code);
+            } catch (const std::bad_alloc&) {
+              // The readers check sizes before allocating; this is the backstop that still
+              // names the scene instead of "internal error: std::bad_alloc".
+              throw Error("out of memory: the scene (or a file it names) needs more memory than this machine has",
+                          opts->scene);
+            }
+          }};
 }
 
 }  // namespace sinew::cli

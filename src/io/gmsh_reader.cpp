@@ -79,10 +79,10 @@ Eigen::Vector3d read_point(TextScanner& in) {
   return x;
 }
 
-std::int64_t read_count(TextScanner& in, std::string_view what) {
-  const std::int64_t n = in.next_integer(what);
-  if (n < 0 || n > (std::int64_t{1} << 31)) in.fail(fmt::format("{} {} is out of range", what, n));
-  return n;
+// `tokens_each`: the fewest tokens each counted item takes, so the count is checked against the
+// rest of the file before anything is sized by it.
+std::int64_t read_count(TextScanner& in, std::string_view what, std::int64_t tokens_each) {
+  return in.next_count(what, tokens_each, 0, std::int64_t{1} << 31);
 }
 
 void expect(TextScanner& in, std::string_view token) {
@@ -91,7 +91,7 @@ void expect(TextScanner& in, std::string_view token) {
 }
 
 void read_nodes_v2(TextScanner& in, MshBuilder& b) {
-  const std::int64_t n = read_count(in, "the node count");
+  const std::int64_t n = read_count(in, "the node count", 4);
   for (std::int64_t i = 0; i < n; ++i) {
     const std::int64_t tag = in.next_integer("a node tag");
     b.add_node(in, tag, read_point(in));
@@ -100,19 +100,19 @@ void read_nodes_v2(TextScanner& in, MshBuilder& b) {
 }
 
 void read_elements_v2(TextScanner& in, MshBuilder& b) {
-  const std::int64_t n = read_count(in, "the element count");
+  const std::int64_t n = read_count(in, "the element count", 3);
   for (std::int64_t i = 0; i < n; ++i) {
     const std::int64_t tag = in.next_integer("an element tag");
     const std::int64_t type = in.next_integer("an element type");
-    const std::int64_t tags = read_count(in, "the number of element tags");
+    const std::int64_t tags = read_count(in, "the number of element tags", 1);
     b.add_element(in, tag, static_cast<int>(type), in.next_line("an element's nodes"), static_cast<std::size_t>(tags));
   }
   expect(in, "$EndElements");
 }
 
 void read_nodes_v4(TextScanner& in, MshBuilder& b) {
-  const std::int64_t blocks = read_count(in, "the node block count");
-  read_count(in, "the node count");
+  const std::int64_t blocks = read_count(in, "the node block count", 4);
+  read_count(in, "the node count", 4);
   in.next_integer("the minimum node tag");
   in.next_integer("the maximum node tag");
   for (std::int64_t k = 0; k < blocks; ++k) {
@@ -120,7 +120,7 @@ void read_nodes_v4(TextScanner& in, MshBuilder& b) {
     in.next_integer("a block's entity tag");
     const bool parametric = in.next_integer("a block's parametric flag") != 0;
     if (parametric) in.fail("parametric node coordinates are not supported");
-    const std::int64_t n = read_count(in, "a block's node count");
+    const std::int64_t n = read_count(in, "a block's node count", 4);
     std::vector<std::int64_t> tags(static_cast<size_t>(n));
     for (auto& t : tags) t = in.next_integer("a node tag");
     for (const std::int64_t t : tags) b.add_node(in, t, read_point(in));
@@ -129,15 +129,15 @@ void read_nodes_v4(TextScanner& in, MshBuilder& b) {
 }
 
 void read_elements_v4(TextScanner& in, MshBuilder& b) {
-  const std::int64_t blocks = read_count(in, "the element block count");
-  read_count(in, "the element count");
+  const std::int64_t blocks = read_count(in, "the element block count", 4);
+  read_count(in, "the element count", 2);
   in.next_integer("the minimum element tag");
   in.next_integer("the maximum element tag");
   for (std::int64_t k = 0; k < blocks; ++k) {
     in.next_integer("a block's entity dimension");
     in.next_integer("a block's entity tag");
     const std::int64_t type = in.next_integer("a block's element type");
-    const std::int64_t n = read_count(in, "a block's element count");
+    const std::int64_t n = read_count(in, "a block's element count", 2);
     for (std::int64_t i = 0; i < n; ++i) {
       const std::int64_t tag = in.next_integer("an element tag");
       b.add_element(in, tag, static_cast<int>(type), in.next_line("an element's nodes"), 0);

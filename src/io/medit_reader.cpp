@@ -48,11 +48,14 @@ constexpr const char* kUnsupportedElements[] = {"Prisms", "Pyramids", "Tetrahedr
 
 // Messages name the item only as a kind ("a vertex coordinate"): the line number locates it,
 // and formatting a description per token would dominate the reading time.
-std::int64_t read_count(TextScanner& in, std::string_view section) {
+// `tokens_each`: the numbers per entry, so the count is checked against the rest of the file
+// before anything is sized by it.
+std::int64_t read_count(TextScanner& in, std::string_view section, std::int64_t tokens_each) {
   const std::int64_t n = in.next_integer("a section count");
   if (n < 0 || n > std::numeric_limits<int>::max()) {
     in.fail(fmt::format("{} count {} is out of range", section, n));
   }
+  in.check_count_fits(fmt::format("the {} count", section), n, tokens_each);
   return n;
 }
 
@@ -79,7 +82,7 @@ VolumeMesh read_medit_mesh(const std::filesystem::path& path) {
     } else if (keyword_is(keyword, "Vertices")) {
       if (have_vertices) in.fail("a second Vertices section");
       if (!have_dimension) in.fail("Vertices before Dimension 3");
-      const std::int64_t n = read_count(in, "vertices");
+      const std::int64_t n = read_count(in, "vertices", 4);
       mesh.vertices.resize(static_cast<Eigen::Index>(n), 3);
       for (std::int64_t v = 0; v < n; ++v) {
         for (int i = 0; i < 3; ++i) {
@@ -94,7 +97,7 @@ VolumeMesh read_medit_mesh(const std::filesystem::path& path) {
       const std::string section = hex ? "hexahedra" : "tetrahedra";
       if (!have_vertices) in.fail(fmt::format("{} before Vertices", keyword));
       const int nodes = hex ? 8 : 4;
-      const std::int64_t n = read_count(in, section);
+      const std::int64_t n = read_count(in, section, nodes + 1);
       auto& list = hex ? hexes : tets;
       list.reserve(list.size() + static_cast<std::size_t>(n * nodes));
       for (std::int64_t e = 0; e < n; ++e) {
@@ -114,7 +117,7 @@ VolumeMesh read_medit_mesh(const std::filesystem::path& path) {
       bool skipped = false;
       for (const auto& s : kSkipped) {
         if (!keyword_is(keyword, s.name)) continue;
-        const std::int64_t n = read_count(in, s.name);
+        const std::int64_t n = read_count(in, s.name, s.integers + s.reals);
         for (std::int64_t r = 0; r < n; ++r) {
           for (int i = 0; i < s.integers; ++i) in.next_integer("an integer entry");
           for (int i = 0; i < s.reals; ++i) in.next_double("a real entry");

@@ -7,6 +7,7 @@
 #include <CGAL/IO/STL.h>
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -199,6 +200,124 @@ bool is_ascii_stl(const std::string& bytes) {
   return bytes.find("facet") != std::string::npos || bytes.find("endsolid") != std::string::npos;
 }
 
+// Binary PLY, walked byte by byte before CGAL reads it: every count is checked against the
+// bytes that follow (CGAL's reader trusts the header, and with 2^31-1 faces claimed it read
+// uninitialised memory), vertex properties must be finite and face indices in range. Errors
+// name the byte offset. Property types: [u]char/[u]int8, [u]short/[u]int16, [u]int/[u]int32,
+// float/float32, double/float64.
+void check_binary_ply(std::string_view text, const std::string& source) {
+  const std::size_t end_header = text.find("end_header");
+  if (end_header == std::string_view::npos) throw Error("no 'end_header'", source);
+  std::size_t pos = text.find('\n', end_header);
+  if (pos == std::string_view::npos) throw Error("file ends after 'end_header'", source);
+  ++pos;
+  const auto at = [&](std::size_t offset) { return fmt::format("{}: byte {}", source, offset); };
+
+  struct Type {
+    int size = 0;
+    bool is_float = false, is_signed = false;
+  };
+  const auto type_of = [&](std::string_view name) {
+    static const std::pair<const char*, Type> kTypes[] = {
+        {"char", {1, false, true}},   {"int8", {1, false, true}},    {"uchar", {1, false, false}},
+        {"uint8", {1, false, false}}, {"short", {2, false, true}},   {"int16", {2, false, true}},
+        {"ushort", {2, false, false}}, {"uint16", {2, false, false}}, {"int", {4, false, true}},
+        {"int32", {4, false, true}},  {"uint", {4, false, false}},   {"uint32", {4, false, false}},
+        {"float", {4, true, true}},   {"float32", {4, true, true}},  {"double", {8, true, true}},
+        {"float64", {8, true, true}}};
+    for (const auto& [n, t] : kTypes)
+      if (name == n) return t;
+    throw Error(fmt::format("unknown PLY property type '{}'", name), source);
+  };
+  struct Property {
+    Type type, count_type;  // count_type.size > 0: a list
+  };
+  struct Element {
+    std::string name;
+    long long count = 0;
+    std::vector<Property> properties;
+  };
+  std::vector<Element> elements;
+  bool big_endian = false;
+  Lines header(text.substr(0, end_header), source, '\0');
+  std::vector<std::string_view> t;
+  while (header.next(t)) {
+    if (t[0] == "format") {
+      if (t.size() < 2 || (t[1] != "binary_little_endian" && t[1] != "binary_big_endian"))
+        header.fail(fmt::format("unknown PLY format '{}'", t.size() < 2 ? "" : t[1]));
+      big_endian = t[1] == "binary_big_endian";
+    } else if (t[0] == "element") {
+      if (t.size() < 3) header.fail("'element' needs a name and a count");
+      elements.push_back({std::string(t[1]), header.index(t[2], 0, 1LL << 31, "an element count"), {}});
+    } else if (t[0] == "property") {
+      if (elements.empty()) header.fail("a property before any element");
+      if (t.size() >= 5 && t[1] == "list") {
+        elements.back().properties.push_back({type_of(t[3]), type_of(t[2])});
+        if (elements.back().properties.back().count_type.is_float) header.fail("a list's count type must be an integer");
+      } else if (t.size() >= 3) {
+        elements.back().properties.push_back({type_of(t[1]), {}});
+      } else {
+        header.fail("'property' needs a type and a name");
+      }
+    }
+  }
+  const auto read = [&](const Type& type, std::size_t offset) -> double {
+    unsigned char b[8];
+    std::memcpy(b, text.data() + offset, static_cast<std::size_t>(type.size));
+    if (big_endian != (std::endian::native == std::endian::big)) std::reverse(b, b + type.size);
+    if (type.is_float) {
+      if (type.size == 4) {
+        float f;
+        std::memcpy(&f, b, 4);
+        return f;
+      }
+      double d;
+      std::memcpy(&d, b, 8);
+      return d;
+    }
+    std::uint64_t u = 0;
+    std::memcpy(&u, b, static_cast<std::size_t>(type.size));  // little-endian machine order after the swap
+    if (type.is_signed && type.size < 8 && (u >> (8 * type.size - 1)) != 0) u |= ~std::uint64_t{0} << (8 * type.size);
+    return type.is_signed ? static_cast<double>(static_cast<std::int64_t>(u)) : static_cast<double>(u);
+  };
+  long long nv = 0;
+  for (const Element& e : elements) {
+    std::size_t row_bytes = 0;  // the fewest bytes a row takes (lists empty)
+    for (const Property& p : e.properties) row_bytes += static_cast<std::size_t>(p.count_type.size ? p.count_type.size : p.type.size);
+    const std::size_t left = text.size() - pos;
+    if (e.count > 0 && (row_bytes == 0 || static_cast<std::size_t>(e.count) > left / row_bytes))
+      throw Error(fmt::format("element '{}' claims {} rows, which need at least {} bytes, but {} bytes follow", e.name,
+                              e.count, static_cast<double>(e.count) * static_cast<double>(row_bytes), left),
+                  at(pos));
+    if (e.name == "vertex") nv = e.count;
+    for (long long r = 0; r < e.count; ++r) {
+      for (const Property& p : e.properties) {
+        long long items = 1;
+        if (p.count_type.size) {
+          if (pos + static_cast<std::size_t>(p.count_type.size) > text.size())
+            throw Error(fmt::format("file ends in {} row {}", e.name, r), at(pos));
+          const double k = read(p.count_type, pos);
+          pos += static_cast<std::size_t>(p.count_type.size);
+          if (e.name == "face" && !(k >= 3 && k <= (1 << 20)))
+            throw Error(fmt::format("face {} has {} vertices (3 to 2^20 allowed)", r, k), at(pos));
+          if (!(k >= 0 && k <= double(text.size())))
+            throw Error(fmt::format("{} row {}: list length {} is out of range", e.name, r, k), at(pos));
+          items = static_cast<long long>(k);
+        }
+        if (static_cast<std::size_t>(items) > (text.size() - pos) / static_cast<std::size_t>(p.type.size))
+          throw Error(fmt::format("file ends in {} row {}", e.name, r), at(pos));
+        for (long long i = 0; i < items; ++i, pos += static_cast<std::size_t>(p.type.size)) {
+          const double v = read(p.type, pos);
+          if (e.name == "vertex" && !std::isfinite(v))
+            throw Error(fmt::format("vertex {} has a property that is not a finite number", r), at(pos));
+          if (e.name == "face" && p.count_type.size && !(v >= 0 && v < double(nv)))
+            throw Error(fmt::format("face {} refers to vertex {}, outside [0, {})", r, v, nv), at(pos));
+        }
+      }
+    }
+  }
+}
+
 // ASCII PLY: vertex rows (every property a finite number) and face rows (count, then indices).
 void check_ascii_ply(std::string_view text, const std::string& source) {
   Lines in(text, source, '\0');
@@ -213,7 +332,7 @@ void check_ascii_ply(std::string_view text, const std::string& source) {
   while (true) {
     if (!in.next(t)) in.fail_at_end("no 'end_header'");
     if (t[0] == "end_header") break;
-    if (t[0] == "format" && (t.size() < 2 || t[1] != "ascii")) return;  // binary: left to CGAL
+    if (t[0] == "format" && (t.size() < 2 || t[1] != "ascii")) return check_binary_ply(text, source);
     if (t[0] == "element") {
       if (t.size() < 3) in.fail("'element' needs a name and a count");
       elements.push_back({std::string(t[1]), in.index(t[2], 0, 1LL << 31, "an element count")});

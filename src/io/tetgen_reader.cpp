@@ -15,9 +15,7 @@ namespace sinew {
 namespace {
 
 std::int64_t read_count(TextScanner& in, std::string_view what, std::int64_t lo, std::int64_t hi) {
-  const std::int64_t n = in.next_integer(what);
-  if (n < lo || n > hi) in.fail(fmt::format("{} {} is out of range [{}, {}]", what, n, lo, hi));
-  return n;
+  return in.next_count(what, 0, lo, hi);
 }
 
 }  // namespace
@@ -36,6 +34,7 @@ VolumeMesh read_tetgen_mesh(const std::filesystem::path& path) {
     read_count(in, "the dimension", 3, 3);
     const std::int64_t attributes = read_count(in, "the attribute count", 0, 1 << 20);
     const std::int64_t markers = read_count(in, "the boundary-marker flag", 0, 1);
+    in.check_count_fits("the point count", n, 4 + attributes + markers);  // before sizing by it
     mesh.vertices.resize(n, 3);
     for (std::int64_t v = 0; v < n; ++v) {
       const std::int64_t index = in.next_integer("a point index");
@@ -59,6 +58,7 @@ VolumeMesh read_tetgen_mesh(const std::filesystem::path& path) {
   const std::int64_t corners = in.next_integer("the nodes per tetrahedron");
   if (corners != 4 && corners != 10) in.fail(fmt::format("nodes per tetrahedron must be 4 or 10, got {}", corners));
   const std::int64_t attributes = read_count(in, "the attribute count", 0, 1 << 20);
+  in.check_count_fits("the tetrahedron count", n, 1 + corners + attributes);  // before sizing by it
   mesh.elements.resize(n, 4);
   for (std::int64_t e = 0; e < n; ++e) {
     const std::int64_t index = in.next_integer("a tetrahedron index");

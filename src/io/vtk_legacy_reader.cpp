@@ -18,10 +18,9 @@
 namespace sinew {
 namespace {
 
-std::int64_t read_count(TextScanner& in, const char* what, std::int64_t max) {
-  const std::int64_t n = in.next_integer(what);
-  if (n < 0 || n > max) in.fail(fmt::format("{} {} is out of range", what, n));
-  return n;
+// Every count is checked against what the rest of the file can hold before anything is sized by it.
+std::int64_t read_count(TextScanner& in, const char* what, std::int64_t tokens_each) {
+  return in.next_count(what, tokens_each, 0, std::numeric_limits<int>::max());
 }
 
 void expect(TextScanner& in, std::string_view keyword) {
@@ -35,7 +34,6 @@ VolumeMesh read_vtk_legacy_mesh(const std::filesystem::path& path) {
   const std::string text = read_text_file(path);
   const std::string source = path.string();
   TextScanner in(text, source);
-  constexpr std::int64_t kMaxCount = std::numeric_limits<int>::max();
 
   const std::string_view header = in.next_line("the header");
   if (header.rfind("# vtk DataFile Version", 0) != 0) {
@@ -60,7 +58,7 @@ VolumeMesh read_vtk_legacy_mesh(const std::filesystem::path& path) {
     const std::string_view keyword = in.next("a section keyword");
     if (keyword == "POINTS") {
       if (have_points) in.fail("a second POINTS section");
-      const std::int64_t n = read_count(in, "the number of points", kMaxCount);
+      const std::int64_t n = read_count(in, "the number of points", 3);
       in.next("the point data type");
       points.resize(static_cast<Eigen::Index>(n), 3);
       for (Eigen::Index p = 0; p < points.rows(); ++p)
@@ -69,13 +67,14 @@ VolumeMesh read_vtk_legacy_mesh(const std::filesystem::path& path) {
     } else if (keyword == "CELLS") {
       if (!have_points) in.fail("CELLS before POINTS");
       if (have_cells) in.fail("a second CELLS section");
-      const std::int64_t n = read_count(in, "the number of cells", kMaxCount);
-      const std::int64_t size = read_count(in, "the cell list size", std::numeric_limits<std::int64_t>::max() / 2);
+      const std::int64_t n = read_count(in, "the number of cells", 1);
+      const std::int64_t size = read_count(in, "the cell list size", 1);
       if (in.peek() == "OFFSETS") {
         // Version 5.1: n is the number of offsets (cells + 1), size the connectivity length.
         in.next("OFFSETS");
         in.next("the offsets data type");
         if (n < 1) in.fail("CELLS needs at least one offset");
+        in.check_count_fits("the offsets and connectivity", n + size, 1);
         cells.offsets.resize(static_cast<std::size_t>(n));
         cell_lines.resize(static_cast<std::size_t>(n));
         for (std::int64_t c = 0; c < n; ++c) {
@@ -93,7 +92,7 @@ VolumeMesh read_vtk_legacy_mesh(const std::filesystem::path& path) {
         cells.connectivity.reserve(static_cast<std::size_t>(size > n ? size - n : 0));
         std::int64_t numbers = 0;
         for (std::int64_t c = 0; c < n; ++c) {
-          const std::int64_t k = read_count(in, "a cell's node count", kMaxCount);
+          const std::int64_t k = read_count(in, "a cell's node count", 1);
           cell_lines.push_back(in.line());
           for (std::int64_t a = 0; a < k; ++a) cells.connectivity.push_back(in.next_integer("a cell node"));
           numbers += k + 1;
@@ -106,7 +105,7 @@ VolumeMesh read_vtk_legacy_mesh(const std::filesystem::path& path) {
       have_cells = true;
     } else if (keyword == "CELL_TYPES") {
       if (have_types) in.fail("a second CELL_TYPES section");
-      const std::int64_t n = read_count(in, "the number of cell types", kMaxCount);
+      const std::int64_t n = read_count(in, "the number of cell types", 1);
       cells.types.resize(static_cast<std::size_t>(n));
       type_lines.resize(static_cast<std::size_t>(n));
       for (std::int64_t c = 0; c < n; ++c) {

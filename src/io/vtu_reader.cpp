@@ -23,6 +23,10 @@
 namespace sinew {
 namespace {
 
+// Arrays this small are parsed whatever their declared size (the parser then names the exact
+// problem); a larger declared size the data cannot hold is refused before anything is sized by it.
+constexpr std::size_t kSmallArray = std::size_t(1) << 20;
+
 struct XmlElement {
   std::string name;
   std::vector<std::pair<std::string, std::string>> attributes;
@@ -45,6 +49,10 @@ struct XmlElement {
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 
+// Elements nest by recursion; a VTU file needs 5 levels (VTKFile/UnstructuredGrid/Piece/
+// Points/DataArray), so a deeper file is refused before it can exhaust the stack.
+constexpr int kMaxXmlDepth = 32;
+
 class XmlParser {
  public:
   XmlParser(std::string_view text, std::string source) : text_(text), source_(std::move(source)) {}
@@ -52,7 +60,7 @@ class XmlParser {
   XmlElement parse_document() {
     skip_misc();
     if (pos_ >= text_.size() || text_[pos_] != '<') fail("not an XML file", pos_);
-    XmlElement root = parse_element();
+    XmlElement root = parse_element(1);
     skip_misc();
     if (pos_ < text_.size()) fail("content after the root element", pos_);
     return root;
@@ -120,7 +128,9 @@ class XmlParser {
     return out;
   }
 
-  XmlElement parse_element() {
+  XmlElement parse_element(int depth) {
+    if (depth > kMaxXmlDepth)
+      fail(fmt::format("elements are nested more than {} levels deep (a VTU file needs 5)", kMaxXmlDepth), pos_);
     XmlElement element;
     element.offset = pos_;
     ++pos_;  // '<'
@@ -176,7 +186,7 @@ class XmlParser {
       } else if (starts_with("<?")) {
         skip_to("?>", "processing instruction");
       } else {
-        element.children.push_back(parse_element());
+        element.children.push_back(parse_element(depth + 1));
       }
     }
   }
@@ -274,6 +284,10 @@ struct VtuFile {
     }
     std::vector<Out> values;
     if (*format == "ascii") {
+      // Each value takes at least two characters with its separator: a count the text cannot
+      // hold is an error here, before anything is sized by it.
+      if (expected > (data.size() + 1) / 2 && expected > kSmallArray)
+        fail(fmt::format("needs {} values but its text ({} bytes) cannot hold that many", expected, data.size()));
       values.reserve(expected);
       std::size_t i = 0;
       while (i < data.size()) {
@@ -291,6 +305,9 @@ struct VtuFile {
         i = end;
       }
     } else if (*format == "binary") {
+      // base64 holds 3 bytes in 4 characters, and a value is >= 1 byte
+      if (expected > data.size() && expected > kSmallArray)
+        fail(fmt::format("needs {} values but its data ({} characters) cannot hold that many", expected, data.size()));
       if (!compressor.empty()) {
         fail(fmt::format("compressed data ({}) is not supported; write uncompressed binary or ascii", compressor));
       }

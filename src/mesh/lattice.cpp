@@ -9,16 +9,43 @@
 
 namespace sinew {
 
+void check_lattice_cells(const Eigen::Vector3i& cells, const std::string& where) {
+  if ((cells.array() <= 0).any())
+    throw Error(fmt::format("cell counts must be positive, got ({}, {}, {})", cells(0), cells(1), cells(2)), where);
+  std::int64_t total = 1;
+  for (int i = 0; i < 3; ++i) {
+    total *= cells(i);  // each factor <= INT_MAX and the running product <= the limit: no overflow
+    if (total > kMaxLatticeCells)
+      throw Error(fmt::format("would make {:.3g} cells ({} x {} x {}; the limit is {})",
+                              double(cells(0)) * double(cells(1)) * double(cells(2)), cells(0), cells(1), cells(2),
+                              kMaxLatticeCells),
+                  where);
+  }
+}
+
+Eigen::Vector3i lattice_cell_counts(const Eigen::Vector3d& size, double h, bool ceil, const std::string& where) {
+  if (!(h > 0.0 && std::isfinite(h))) throw Error(fmt::format("the cell size must be positive and finite, got {}", h), where);
+  Eigen::Vector3d counts;
+  for (int i = 0; i < 3; ++i) {
+    const double r = size(i) / h;
+    counts(i) = std::max(1.0, ceil ? std::ceil(r - 1e-9) : std::round(r));
+  }
+  const double total = counts.prod();
+  if (!(total <= double(kMaxLatticeCells)))  // also catches inf and NaN
+    throw Error(fmt::format("the lattice would have {:.3g} cells ({:.3g} x {:.3g} x {:.3g} at cell size {:.3g}; the "
+                            "limit is {}); use a larger cell size",
+                            total, counts(0), counts(1), counts(2), h, kMaxLatticeCells),
+                where);
+  return counts.cast<int>();  // each count <= the limit: exact
+}
+
 VolumeMesh box_lattice(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3i& cells) {
   return occupancy_lattice(Eigen::AlignedBox3d(lo, hi), cells, [](const Eigen::Vector3d&) { return true; });
 }
 
 VolumeMesh occupancy_lattice(const Eigen::AlignedBox3d& bounds, const Eigen::Vector3i& cells,
                              const std::function<bool(const Eigen::Vector3d&)>& inside) {
-  if ((cells.array() <= 0).any()) {
-    throw Error(fmt::format("cell counts must be positive, got ({}, {}, {})", cells(0), cells(1), cells(2)),
-                "lattice");
-  }
+  check_lattice_cells(cells, "lattice");
   if (!((bounds.max() - bounds.min()).array() > 0.0).all()) throw Error("empty bounding box", "lattice");
   const Eigen::Vector3d h = (bounds.max() - bounds.min()).cwiseQuotient(cells.cast<double>());
   const Eigen::Vector3i nv = cells.array() + 1;

@@ -2,9 +2,13 @@
 
 #include <gmsh.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
+#include <map>
 #include <mutex>
+#include <queue>
 #include <unordered_map>
 #include <vector>
 
@@ -32,16 +36,79 @@ struct GmshSession {
 
 }  // namespace
 
-VolumeMesh tetrahedralize_surface(const TriangleSurface& surface, double max_edge) {
+TriangleSurface bisect_long_edges(const TriangleSurface& surface, double max_edge, Eigen::Index max_faces) {
+  using Edge = std::pair<int, int>;  // (smaller, larger) vertex index
+  const auto edge = [](int a, int b) { return a < b ? Edge{a, b} : Edge{b, a}; };
+  std::vector<Eigen::Vector3d> vertices;
+  for (Eigen::Index v = 0; v < surface.num_vertices(); ++v) vertices.push_back(surface.vertices.row(v).transpose());
+  std::vector<std::array<int, 3>> faces;
+  for (Eigen::Index f = 0; f < surface.num_faces(); ++f) faces.push_back({surface.faces(f, 0), surface.faces(f, 1), surface.faces(f, 2)});
+  const auto length = [&](const Edge& e) { return (vertices[e.first] - vertices[e.second]).norm(); };
+
+  std::map<Edge, std::vector<int>> faces_of;  // the faces that hold each edge
+  std::priority_queue<std::pair<double, Edge>> longest;
+  const auto add = [&](int a, int b, int f) {
+    const Edge e = edge(a, b);
+    faces_of[e].push_back(f);
+    if (const double l = length(e); l > max_edge) longest.push({l, e});  // pushed once per face; popped once
+  };
+  for (int f = 0; f < static_cast<int>(faces.size()); ++f)
+    for (int k = 0; k < 3; ++k) add(faces[f][k], faces[f][(k + 1) % 3], f);
+
+  while (!longest.empty()) {
+    const Edge e = longest.top().second;
+    longest.pop();
+    const auto it = faces_of.find(e);
+    if (it == faces_of.end()) continue;  // already split
+    const std::vector<int> incident = std::move(it->second);
+    faces_of.erase(it);
+    const int m = static_cast<int>(vertices.size());
+    vertices.push_back(0.5 * (vertices[e.first] + vertices[e.second]));
+    for (const int f : incident) {
+      if (static_cast<Eigen::Index>(faces.size()) >= max_faces)
+        throw Error(fmt::format("max_edge {} is too small for this surface: splitting its edges to that length needs "
+                                "more than {} triangles",
+                                max_edge, max_faces),
+                    "tetrahedralize");
+      // (a, b, c) with edge (a, b) becomes (a, m, c) and (m, b, c): both keep the orientation.
+      int k = 0;
+      while (edge(faces[f][k], faces[f][(k + 1) % 3]) != e) ++k;
+      const int a = faces[f][k], b = faces[f][(k + 1) % 3], c = faces[f][(k + 2) % 3];
+      const int g = static_cast<int>(faces.size());
+      faces[f] = {a, m, c};
+      faces.push_back({m, b, c});
+      auto& bc = faces_of[edge(b, c)];
+      std::replace(bc.begin(), bc.end(), f, g);
+      add(a, m, f);
+      add(m, b, g);
+      add(m, c, f);
+      faces_of[edge(m, c)].push_back(g);  // (m, c) is shared by both halves; queued once above
+    }
+  }
+  TriangleSurface out;
+  out.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
+  for (std::size_t v = 0; v < vertices.size(); ++v) out.vertices.row(static_cast<Eigen::Index>(v)) = vertices[v].transpose();
+  out.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) out.faces(static_cast<Eigen::Index>(f), k) = faces[f][k];
+  return out;
+}
+
+VolumeMesh tetrahedralize_surface(const TriangleSurface& input, double max_edge) {
   const std::string where = "tetrahedralize";
   if (!(max_edge > 0.0 && std::isfinite(max_edge)))
     throw Error(fmt::format("max_edge must be a positive finite number, got {}", max_edge), where);
-  surface.validate(where, true);
-  const SurfaceTopology topology = surface_topology(surface);
+  input.validate(where, true);
+  const SurfaceTopology topology = surface_topology(input);
   if (!topology.watertight())
     throw Error(fmt::format("Gmsh needs a 2-manifold surface; this one has {} edges shared by more than two faces",
                             topology.nonmanifold_edges),
                 where);
+  // Gmsh keeps the boundary triangles and sizes the inside from them, so long ones are split
+  // first: those longer than twice max_edge (Gmsh's sizes are targets, met within about that
+  // factor), so a surface already finer than that stays the boundary exactly (an embedded
+  // render surface then maps onto it without interpolation error).
+  const TriangleSurface surface = bisect_long_edges(input, 2.0 * max_edge);
   std::lock_guard lock(gmsh_mutex);
   VolumeMesh mesh;
   mesh.kind = ElementKind::Tet4;

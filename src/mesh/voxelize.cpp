@@ -6,11 +6,10 @@
 #include <vector>
 
 #include "sinew/core/error.hpp"
+#include "sinew/mesh/lattice.hpp"
 
 namespace sinew {
 namespace {
-
-constexpr double kMaxCells = 5e7;  // as for scene lattices
 
 // Corner a (VTK_HEXAHEDRON order) of a cell as offsets along x, y, z.
 constexpr std::array<std::array<int, 3>, 8> kCorner = {
@@ -41,13 +40,7 @@ VolumeMesh voxelize_surface(const InsideTest& shape, const VoxelizeOptions& opti
     const Eigen::Vector3d steps = ((bounds.min() - o) / h).array() + 1e-9;
     bounds.min() = o + h * steps.array().floor().matrix();
   }
-  Eigen::Vector3i cells;
-  for (int i = 0; i < 3; ++i)  // the tolerance keeps an exact multiple of h from adding an empty layer
-    cells(i) = std::max(1, static_cast<int>(std::ceil(bounds.sizes()(i) / h - 1e-9)));
-  if (cells.cast<double>().prod() > kMaxCells)
-    throw Error(fmt::format("the lattice would have {:.3g} cells (the limit is {:.0e}); use a larger cell_size",
-                            cells.cast<double>().prod(), kMaxCells),
-                "voxelize");
+  const Eigen::Vector3i cells = lattice_cell_counts(bounds.sizes(), h, /*ceil=*/true, "voxelize");
   const Eigen::Vector3d origin = bounds.min();
   auto cell_id = [&](int i, int j, int k) { return (static_cast<Eigen::Index>(k) * cells(1) + j) * cells(0) + i; };
   // Crossing test on a box shrunk by a hair: a cell that only touches the surface along its own

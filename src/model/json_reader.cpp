@@ -4,6 +4,9 @@
 #include <climits>
 #include <cmath>
 #include <fmt/format.h>
+#include <fstream>
+#include <functional>
+#include <set>
 
 #include "sinew/core/error.hpp"
 
@@ -11,8 +14,34 @@ namespace sinew {
 namespace {
 
 // A value as it appeared, shortened for an error line: `string "abc"`, `array [1,2]`.
+// Built piece by piece with a bounded depth and length, so a huge or deeply nested value costs
+// no more than a short one (dump() would print all of it, recursively).
+void preview(const nlohmann::json& j, std::string& out, int depth) {
+  constexpr std::size_t kLength = 40;
+  if (out.size() > kLength) return;
+  if (!j.is_structured()) {
+    out += j.dump();
+    return;
+  }
+  const bool array = j.is_array();
+  if (j.empty() || depth >= 2) {
+    out += j.empty() ? (array ? "[]" : "{}") : (array ? "[...]" : "{...}");
+    return;
+  }
+  out += array ? '[' : '{';
+  bool first = true;
+  for (auto it = j.begin(); it != j.end() && out.size() <= kLength; ++it) {
+    if (!first) out += ',';
+    first = false;
+    if (!array) out += nlohmann::json(it.key()).dump() + ":";
+    preview(*it, out, depth + 1);
+  }
+  out += array ? ']' : '}';
+}
+
 std::string describe(const nlohmann::json& j) {
-  std::string text = j.dump();
+  std::string text;
+  preview(j, text, 0);
   if (text.size() > 40) text = text.substr(0, 37) + "...";
   return fmt::format("{} {}", j.type_name(), text);
 }
@@ -38,7 +67,85 @@ std::optional<std::string> integer_problem(const nlohmann::json& j, long long mi
   return std::nullopt;
 }
 
+// Objects and arrays nest at most this deep in a file; deeper input is refused while parsing,
+// before anything (copying, printing, freeing) can recurse that deep.
+constexpr std::size_t kMaxJsonDepth = 64;
+
+
+// Tracks the JSON pointer of the value being parsed (for errors nlohmann reports without
+// one) and rejects duplicate keys, which nlohmann would otherwise resolve silently.
+class PathTracker {
+ public:
+  explicit PathTracker(std::string file) : file_(std::move(file)) {}
+
+  bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using E = nlohmann::json::parse_event_t;
+    if ((event == E::object_start || event == E::array_start) && stack_.size() >= kMaxJsonDepth)
+      throw Error(fmt::format("nested more than {} levels deep (Sinew's formats need fewer than 10)", kMaxJsonDepth),
+                  file_ + ": " + path());
+    switch (event) {
+      case E::object_start: stack_.push_back({false, 0, "", {}}); break;
+      case E::array_start: stack_.push_back({true, 0, "", {}}); break;
+      case E::key: {
+        Frame& top = stack_.back();
+        top.key = parsed.get<std::string>();
+        if (!top.seen.insert(top.key).second) throw Error("duplicate key (JSON objects need unique keys)", file_ + ": " + path());
+        break;
+      }
+      case E::object_end:
+      case E::array_end: stack_.pop_back(); next_element(); break;
+      case E::value: next_element(); break;
+    }
+    return true;
+  }
+
+  std::string path() const {
+    std::string p;
+    for (const auto& f : stack_) p += "/" + (f.array ? std::to_string(f.index) : f.key);
+    return p.empty() ? "/" : p;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    size_t index;
+    std::string key;
+    std::set<std::string> seen;
+  };
+  void next_element() {
+    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+  }
+  std::string file_;
+  std::vector<Frame> stack_;
+};
+
+// nlohmann's "[json.exception.parse_error.101] parse error at line 3, column 5: ..." without
+// the bracketed tag.
+std::string without_tag(const std::string& what) {
+  const auto close = what.find("] ");
+  return what.rfind("[json.exception", 0) == 0 && close != std::string::npos ? what.substr(close + 2) : what;
+}
+
 }  // namespace
+
+nlohmann::json read_json_file(const std::filesystem::path& file, const std::string& kind) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw Error(fmt::format("is a directory, not a {} file", kind), name);
+  std::ifstream in(file);
+  if (!in) throw Error(fmt::format("cannot open {} file (missing or unreadable)", kind), name);
+  PathTracker tracker(name);
+  try {
+    return nlohmann::json::parse(in, std::ref(tracker));
+  } catch (const nlohmann::json::parse_error& e) {
+    throw Error(fmt::format("malformed JSON: {}", without_tag(e.what())), name);
+  } catch (const nlohmann::json::out_of_range& e) {
+    // 1e999 and the like: "number overflow parsing '1e999'".
+    throw Error(fmt::format("{} (numbers must be finite doubles)", without_tag(e.what())), name + ": " + tracker.path());
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("malformed JSON: {}", without_tag(e.what())), name + ": " + tracker.path());
+  }
+}
 
 JsonObject::JsonObject(const nlohmann::json& json, std::string file, std::string path)
     : json_(json), file_(std::move(file)), path_(std::move(path)) {

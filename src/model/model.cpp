@@ -77,7 +77,8 @@ void build_boundary(const Scene& scene, Model& m) {
   for (size_t i = 0; i < scene.boundary.size(); ++i) {
     const auto& b = scene.boundary[i];
     const std::string where = fmt::format("{}: /boundary/{}/select", file, i);
-    KinematicCondition c{select_vertices(mesh.vertices, b.select, where), b.motion};
+    KinematicCondition c{select_vertices(mesh.vertices, b.select, where), b.motion,
+                         fmt::format("{}: /boundary/{}/motion", file, i)};
     for (int v : c.vertices) {
       if (owner[v] >= 0 && !(std::holds_alternative<Pinned>(b.motion) &&
                              std::holds_alternative<Pinned>(scene.boundary[owner[v]].motion)))

@@ -156,18 +156,8 @@ Rig parse_rig(const nlohmann::json& json, const std::filesystem::path& file, con
 }
 
 Rig load_rig(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw Error("is a directory, not a rig file", name);
-  std::ifstream in(file);
-  if (!in) throw Error("cannot open rig file (missing or unreadable)", name);
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(fmt::format("malformed JSON: {}", e.what()), name);
-  }
-  return parse_rig(json, file, "");
+  // The scene files' reader: duplicate keys and over-deep nesting are errors here too.
+  return parse_rig(read_json_file(file, "rig"), file, "");
 }
 
 }  // namespace sinew

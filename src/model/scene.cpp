@@ -20,7 +20,6 @@
 namespace sinew {
 namespace {
 
-constexpr double kMaxCells = 5e7;   // lattice cells: far beyond what fits a workstation anyway
 constexpr int kMaxFrames = 1000000;  // as for --frames
 
 int parse_axis(JsonObject& o, const std::string& key) {
@@ -150,8 +149,14 @@ MeshSpec parse_mesh(JsonObject o, const std::filesystem::path& folder) {
     v.allow({"min", "max", "dims", "occupancy"});
     VoxelShape s{v.vec3("min"), v.vec3("max"), v.ivec3("dims", 1), v.int_list("occupancy", 0)};
     if (!((s.hi - s.lo).array() > 0.0).all()) v.fail("max", "must exceed min in every coordinate");
-    if (static_cast<long long>(s.occupancy.size()) != static_cast<long long>(s.dims.prod()))
-      v.fail("occupancy", fmt::format("needs dims[0]*dims[1]*dims[2] = {} entries, got {}", s.dims.prod(),
+    try {
+      check_lattice_cells(s.dims, "");  // 64-bit product, so dims that wrap an int cannot pass
+    } catch (const Error& e) {
+      v.fail("dims", e.message());
+    }
+    const std::int64_t entries = std::int64_t{s.dims(0)} * s.dims(1) * s.dims(2);
+    if (static_cast<std::int64_t>(s.occupancy.size()) != entries)
+      v.fail("occupancy", fmt::format("needs dims[0]*dims[1]*dims[2] = {} entries, got {}", entries,
                                       s.occupancy.size()));
     if (std::none_of(s.occupancy.begin(), s.occupancy.end(), [](int c) { return c != 0; }))
       v.fail("occupancy", "no voxel is occupied");
@@ -166,8 +171,11 @@ MeshSpec parse_mesh(JsonObject o, const std::filesystem::path& folder) {
     if (resolutions != 1) o.fail("", "give exactly one of cells, cell_size or resolution");
     if (o.has("cells")) {
       spec.cells = o.ivec3("cells", 1);
-      if (spec.cells->cast<double>().prod() > kMaxCells)
-        o.fail("cells", fmt::format("would make {:.3g} cells (the limit is {:.0e})", spec.cells->cast<double>().prod(), kMaxCells));
+      try {
+        check_lattice_cells(*spec.cells, "");
+      } catch (const Error& e) {
+        o.fail("cells", e.message());
+      }
     }
     if (o.has("cell_size")) spec.cell_size = o.positive("cell_size");
     if (o.has("resolution")) spec.resolution = o.integer("resolution", 1);
@@ -280,79 +288,8 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   return scene;
 }
 
-namespace {
-
-// Tracks the JSON pointer of the value being parsed (for errors nlohmann reports without
-// one) and rejects duplicate keys, which nlohmann would otherwise resolve silently.
-class PathTracker {
- public:
-  explicit PathTracker(std::string file) : file_(std::move(file)) {}
-
-  bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
-    using E = nlohmann::json::parse_event_t;
-    switch (event) {
-      case E::object_start: stack_.push_back({false, 0, "", {}}); break;
-      case E::array_start: stack_.push_back({true, 0, "", {}}); break;
-      case E::key: {
-        Frame& top = stack_.back();
-        top.key = parsed.get<std::string>();
-        if (!top.seen.insert(top.key).second) throw Error("duplicate key (JSON objects need unique keys)", file_ + ": " + path());
-        break;
-      }
-      case E::object_end:
-      case E::array_end: stack_.pop_back(); next_element(); break;
-      case E::value: next_element(); break;
-    }
-    return true;
-  }
-
-  std::string path() const {
-    std::string p;
-    for (const auto& f : stack_) p += "/" + (f.array ? std::to_string(f.index) : f.key);
-    return p.empty() ? "/" : p;
-  }
-
- private:
-  struct Frame {
-    bool array;
-    size_t index;
-    std::string key;
-    std::set<std::string> seen;
-  };
-  void next_element() {
-    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
-  }
-  std::string file_;
-  std::vector<Frame> stack_;
-};
-
-// nlohmann's "[json.exception.parse_error.101] parse error at line 3, column 5: ..." without
-// the bracketed tag.
-std::string without_tag(const std::string& what) {
-  const auto close = what.find("] ");
-  return what.rfind("[json.exception", 0) == 0 && close != std::string::npos ? what.substr(close + 2) : what;
-}
-
-}  // namespace
-
 Scene load_scene(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw Error("is a directory, not a scene file", name);
-  std::ifstream in(file);
-  if (!in) throw Error("cannot open scene file (missing or unreadable)", name);
-  nlohmann::json json;
-  PathTracker tracker(name);
-  try {
-    json = nlohmann::json::parse(in, std::ref(tracker));
-  } catch (const nlohmann::json::parse_error& e) {
-    throw Error(fmt::format("malformed JSON: {}", without_tag(e.what())), name);
-  } catch (const nlohmann::json::out_of_range& e) {
-    // 1e999 and the like: "number overflow parsing '1e999'".
-    throw Error(fmt::format("{} (numbers must be finite doubles)", without_tag(e.what())), name + ": " + tracker.path());
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(fmt::format("malformed JSON: {}", without_tag(e.what())), name + ": " + tracker.path());
-  }
+  const nlohmann::json json = read_json_file(file, "scene");
   return parse_scene(json, file);
 }
 
@@ -360,13 +297,9 @@ namespace {
 
 Eigen::Vector3i lattice_cells(const MeshSpec& spec, const Eigen::AlignedBox3d& bounds, const std::string& where) {
   const Eigen::Vector3d size = bounds.max() - bounds.min();
-  Eigen::Vector3i cells;
   if (spec.cells) return *spec.cells;
   const double h = spec.cell_size ? *spec.cell_size : size.maxCoeff() / *spec.resolution;
-  for (int i = 0; i < 3; ++i) cells(i) = std::max(1, static_cast<int>(std::lround(size(i) / h)));
-  if (cells.cast<double>().prod() > kMaxCells)
-    throw Error(fmt::format("the lattice would have {:.3g} cells (the limit is {:.0e})", cells.cast<double>().prod(), kMaxCells), where);
-  return cells;
+  return lattice_cell_counts(size, h, /*ceil=*/false, where + (spec.cell_size ? "/cell_size" : "/resolution"));
 }
 
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 
 #include "sinew/core/error.hpp"
 
@@ -139,6 +140,16 @@ SurfaceQuery BoxObstacle::query(const Eigen::Vector3d& p) const {
 Obstacle::Obstacle(std::string name, std::shared_ptr<const ObstacleShape> shape, RigidMotion path)
     : name_(std::move(name)), shape_(std::move(shape)), path_(std::move(path)) {
   validate_motion(path_, name_);
+}
+
+RigidTransform Obstacle::pose(double frame) const {
+  const RigidTransform T = transform_at(path_, frame);
+  if (!T.R.allFinite() || !T.t.allFinite())
+    throw Error(fmt::format("at frame {:g} the obstacle's motion is out of the finite numbers (translation ({:g}, {:g}, "
+                            "{:g})); use a smaller motion or fewer frames",
+                            frame, T.t(0), T.t(1), T.t(2)),
+                name_);
+  return T;
 }
 
 bool Obstacle::moves() const { return !std::holds_alternative<Pinned>(path_); }

@@ -56,7 +56,13 @@ void apply_kinematics(const std::vector<KinematicCondition>& conditions, const E
   for (const auto& c : conditions) {
     const RigidTransform T = transform_at(c.motion, frame);
     for (int v : c.vertices) {
-      x.segment<3>(3 * v) = T.apply(rest.row(v).transpose());
+      const Eigen::Vector3d p = T.apply(rest.row(v).transpose());
+      if (!p.allFinite())
+        throw Error(fmt::format("at frame {:g} the motion moves vertex {} to ({:g}, {:g}, {:g}), out of the finite "
+                                "numbers; use a smaller motion or fewer frames",
+                                frame, v, p(0), p(1), p(2)),
+                    c.source.empty() ? std::string("motion") : c.source);
+      x.segment<3>(3 * v) = p;
       fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = 1;
     }
   }

@@ -85,4 +85,10 @@ expect_ok material eval --material linear_corotational --F $F
 for word in "psi =" "P = dpsi/dF" "Hessian" "projected Hessian (clamp)" "eigenvalues" "lambda_Lame"; do
   grep -qF "$word" "$TMP/out" || fail "text output lacks '$word'"
 done
+# det F = 1e-200 (issue 13): the formulas overflow; an error naming --F, never NaN with exit 0.
+for fmt in "" --json; do
+  expect_error "--F (J = 1e-200)" material eval --material neo_hookean --E 1e5 --nu 0.3 \
+    --F 1e-200 0 0 0 1 0 0 0 1 $fmt
+  grep -qF "not finite" "$TMP/err" || fail "det F = 1e-200: $(cat "$TMP/err")"
+done
 echo "eval: ok"

@@ -29,6 +29,13 @@ class TextScanner {
   void skip_past_blank_line();
 
   std::int64_t next_integer(std::string_view what);
+  // A count from the file's header, in [lo, hi], and small enough that `tokens_each` tokens
+  // per item fit in what is left of the file (a token takes at least two bytes with its
+  // separator). Readers check every count with it before allocating, so a 300-byte file that
+  // claims 2^31 cells is an error naming the line, not gigabytes of memory.
+  std::int64_t next_count(std::string_view what, std::int64_t tokens_each, std::int64_t lo, std::int64_t hi);
+  // Fails unless `count` items of `tokens_each` tokens can fit in the rest of the file.
+  void check_count_fits(std::string_view what, std::int64_t count, std::int64_t tokens_each) const;
   // Finite decimal number ("1", "-2.5e-3", "+.5"); NaN and infinity are rejected.
   double next_double(std::string_view what);
 

@@ -3,6 +3,7 @@
 // and range, and finish() rejects keys that nothing read. Errors name the file and JSON path,
 // e.g. "scene.json: /solver/newton/tolerance: must be a positive finite number, got -1".
 #include <Eigen/Core>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -10,6 +11,11 @@
 #include <vector>
 
 namespace sinew {
+
+// Parses a JSON file strictly, for every Sinew JSON format (scenes, rigs): duplicate keys and
+// nesting deeper than 64 levels are errors, and every error names the file and, where known,
+// the JSON path. `kind` ("scene", "rig") words the missing-file message.
+nlohmann::json read_json_file(const std::filesystem::path& file, const std::string& kind);
 
 class JsonObject {
  public:

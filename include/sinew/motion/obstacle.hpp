@@ -96,7 +96,8 @@ class Obstacle {
   const RigidMotion& path() const { return path_; }
   bool moves() const;
 
-  RigidTransform pose(double frame) const { return transform_at(path_, frame); }
+  // Throws a sinew::Error naming the obstacle and frame when the path has left the finite numbers.
+  RigidTransform pose(double frame) const;
   // The query of a world-space point against the obstacle at `frame`, in world space.
   SurfaceQuery query(const Eigen::Vector3d& p, double frame) const;
   // How far the obstacle material point at p (world, at frame0) moves by frame1.

@@ -44,10 +44,13 @@ void validate_motion(const RigidMotion& motion, const std::string& context);
 struct KinematicCondition {
   std::vector<int> vertices;
   RigidMotion motion;
+  std::string source;  // where the motion was given ("scene.json: /boundary/0/motion"), for errors
 };
 
 // Sets x at every constrained vertex to the motion applied to its rest position and marks
-// its DOFs fixed.
+// its DOFs fixed. A motion that carries a vertex out of the finite doubles (a translation of
+// 1e300 per frame, run long enough) is a sinew::Error naming the condition's source, the frame
+// and the vertex, rather than a NaN that fails somewhere later without saying why.
 void apply_kinematics(const std::vector<KinematicCondition>& conditions, const Eigen::MatrixX3d& rest,
                       double frame, Eigen::VectorXd& x, std::vector<char>& fixed);
 

@@ -1,0 +1,7 @@
+// libFuzzer target: the .stl triangle surface reader (Sinew's checks, then CGAL's reader).
+#include "support.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  sinew::fuzz::fuzz_surface(data, size, ".stl");
+  return 0;
+}
