@@ -17,6 +17,8 @@ class ElasticForm final : public Form {
   double value(const Eigen::VectorXd& x) const override;
   void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override;
+  bool projects_hessian() const override { return projection_ != Projection::None; }
+  void add_exact_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override;
   void couplings(std::vector<std::vector<int>>& cliques) const override;
   bool is_valid(const Eigen::VectorXd& x) const override;
 
@@ -31,6 +33,7 @@ class ElasticForm final : public Form {
   const Material& material() const { return *material_; }
 
  private:
+  void add_hessian_projected(const Eigen::VectorXd& x, BlockHessian& H, Projection projection) const;
   std::shared_ptr<const Discretization> disc_;
   std::shared_ptr<const Material> material_;
   Projection projection_;
