@@ -102,7 +102,7 @@ FormCase contact_case(bool project) {
       std::make_shared<Obstacle>("ground",
                                  std::make_shared<PlaneObstacle>(Eigen::Vector3d(0, 0, 0.15), Eigen::Vector3d(0.2, 0.1, 1)),
                                  Translation{Eigen::Vector3d(0.02, -0.01, 0.01)}),
-      std::make_shared<Obstacle>("ball", std::make_shared<SphereObstacle>(Eigen::Vector3d(1.1, 0.4, 0.3), 0.35),
+      std::make_shared<Obstacle>("ball", std::make_shared<SphereObstacle>(Eigen::Vector3d(1.45, 0.36, 0.3), 0.3),
                                  Translation{Eigen::Vector3d(-0.01, 0.0, 0.02)})};
   std::vector<ContactParameters> params{{2e3, 0.4}, {5e3, 0.3}};
   std::vector<int> vertices(d->mesh().num_vertices());
@@ -234,7 +234,7 @@ class Broken final : public Form {
   void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override {
     g += x.array().pow(3).matrix();
     g(0) += x(1);
-    g(1) += (fault_ == Fault::Gradient ? 1.01 : 1.0) * x(0);
+    g(1) += (fault_ == Fault::Gradient ? 1.1 : 1.0) * x(0);
   }
   void add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override {
     Mat3 B = (3.0 * x.head<3>().array().square()).matrix().asDiagonal();
