@@ -181,7 +181,9 @@ TEST_P(EveryForm, DerivativesMatchFiniteDifferences) {
   EXPECT_LE(check.gradient_error, 1e-6);
   EXPECT_LE(check.hessian_error, 1e-6);
   EXPECT_LE(check.asymmetry, 1e-10);
-  if (check.projected) EXPECT_GE(check.min_eigenvalue, -1e-10);
+  if (check.projected) {
+    EXPECT_GE(check.min_eigenvalue, -1e-10);
+  }
   EXPECT_TRUE(check.passed());
   // The form does something at this state (a check of a zero form proves nothing).
   Eigen::VectorXd g = Eigen::VectorXd::Zero(c.x.size());
