@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <random>
 
+#include "sinew/core/finite_difference.hpp"
 #include "sinew/forms/corotational_hex_form.hpp"
 #include "sinew/constraints/energy_limit.hpp"
 #include "sinew/forms/elastic_form.hpp"
@@ -54,20 +55,10 @@ Eigen::SparseMatrix<double> stiffness(const Form& form, const Eigen::VectorXd& x
 
 Mat3 some_rotation(double angle = 0.9) { return Eigen::AngleAxisd(angle, Vec3(1, 2, -0.5).normalized()).toRotationMatrix(); }
 
-// Central differences of a scalar function of x over every DOF.
+// Central differences of a scalar function of x over every DOF (the library's core).
 template <class Fn>
-Eigen::VectorXd central_differences(const Fn& f, Eigen::VectorXd x, double step) {
-  Eigen::VectorXd g(x.size());
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    const double xi = x(i);
-    x(i) = xi + step;
-    const double fp = f(x);
-    x(i) = xi - step;
-    const double fm = f(x);
-    x(i) = xi;
-    g(i) = (fp - fm) / (2 * step);
-  }
-  return g;
+Eigen::VectorXd central_differences(const Fn& f, const Eigen::VectorXd& x, double step) {
+  return difference_gradient(f, x, step);
 }
 
 TEST(HookeCoefficients, MatchPaperDefinitions) {
@@ -145,13 +136,7 @@ TEST(CorotationalHexForm, StiffnessIsTheForceDerivativeAtRestAndAssemblesElement
   // there (and R K R^T of a rigidly rotated rest state is its rotated copy).
   const Eigen::VectorXd X = d->mesh().rest_positions();
   const Eigen::MatrixXd K(stiffness(model, X));
-  Eigen::MatrixXd fd(X.size(), X.size());
-  for (Eigen::Index i = 0; i < X.size(); ++i) {
-    Eigen::VectorXd xp = X, xm = X;
-    xp(i) += 1e-6;
-    xm(i) -= 1e-6;
-    fd.col(i) = -(forces(model, xp) - forces(model, xm)) / 2e-6;
-  }
+  const Eigen::MatrixXd fd = -difference_jacobian([&](const Eigen::VectorXd& y) { return forces(model, y); }, X, 1e-6);
   EXPECT_LE((K - fd).norm(), 1e-6 * K.norm());
   // Away from rest: the assembled matrix is the sum of the element blocks R K_e R^T.
   const Eigen::VectorXd x = deformed(*d, some_rotation(), 0.02, 13);

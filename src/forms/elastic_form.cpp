@@ -52,7 +52,13 @@ void ElasticForm::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) con
   }
 }
 
-void ElasticForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const {
+void ElasticForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const { add_hessian_projected(x, H, projection_); }
+
+void ElasticForm::add_exact_hessian(const Eigen::VectorXd& x, BlockHessian& H) const {
+  add_hessian_projected(x, H, Projection::None);
+}
+
+void ElasticForm::add_hessian_projected(const Eigen::VectorXd& x, BlockHessian& H, Projection projection) const {
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;
   const int n = d.nodes();
@@ -65,7 +71,7 @@ void ElasticForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const {
         K.setZero();
         for (int q = 0; q < d.quadrature_points(); ++q) {
           const Eigen::MatrixX3d& D = d.gradients(e, q);
-          add_element_hessian(D, material_->projected_hessian(xe * D, projection_), d.weight(e, q), K);
+          add_element_hessian(D, material_->projected_hessian(xe * D, projection), d.weight(e, q), K);
         }
         for (int b = 0; b < n; ++b)
           for (int a = 0; a < n; ++a) {

@@ -102,7 +102,13 @@ void PenaltyContactForm::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd&
   }
 }
 
-void PenaltyContactForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const {
+void PenaltyContactForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const { add_hessian_projected(x, H, project_); }
+
+void PenaltyContactForm::add_exact_hessian(const Eigen::VectorXd& x, BlockHessian& H) const {
+  add_hessian_projected(x, H, false);
+}
+
+void PenaltyContactForm::add_hessian_projected(const Eigen::VectorXd& x, BlockHessian& H, bool project) const {
   for (size_t o = 0; o < obstacles_.size(); ++o)
     for (int v : vertices_) {
       const SurfaceQuery q = obstacles_[o]->query(x.segment<3>(3 * v), frame_);
@@ -110,7 +116,7 @@ void PenaltyContactForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H) 
       // d/dx (a k d n) = a k (n n^T + d dn/dx); the curvature part is negative inside a convex
       // obstacle, hence the projection.
       Mat3 K = areas_(v) * params_[o].stiffness * (q.normal * q.normal.transpose() + q.distance * q.normal_derivative);
-      H.add_block(v, v, project_ ? project_psd(K) : K);
+      H.add_block(v, v, project ? project_psd(K) : K);
     }
   for (const auto& f : friction_) {
     const Eigen::Vector3d u = f.tangent * (x.segment<3>(3 * f.vertex) - f.origin);

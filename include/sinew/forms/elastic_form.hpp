@@ -17,6 +17,8 @@ class ElasticForm final : public ElementForm {
   double value(const Eigen::VectorXd& x) const override;
   void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override;
+  bool projects_hessian() const override { return projection_ != Projection::None; }
+  void add_exact_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override;
   bool is_valid(const Eigen::VectorXd& x) const override;
 
   // Per-element fields for output: energy (integrated), mean J, volume-averaged energy
@@ -37,6 +39,7 @@ class ElasticForm final : public ElementForm {
   const Material& material() const { return *material_; }
 
  private:
+  void add_hessian_projected(const Eigen::VectorXd& x, BlockHessian& H, Projection projection) const;
   std::shared_ptr<const Discretization> disc_;
   std::shared_ptr<const Material> material_;
   Projection projection_;

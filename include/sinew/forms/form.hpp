@@ -21,6 +21,11 @@ class Form {
   virtual void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const = 0;
   // H += d2E/dx2 (projected to PSD where the term is not convex)
   virtual void add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const = 0;
+  // True where add_hessian projects to PSD; add_exact_hessian then gives the true d2E/dx2 (the
+  // derivative checker, forms/derivative_check.hpp, checks that one against differences of the
+  // gradient, and the projected one for symmetry and definiteness).
+  virtual bool projects_hessian() const { return false; }
+  virtual void add_exact_hessian(const Eigen::VectorXd& x, BlockHessian& H) const { add_hessian(x, H); }
 
   // Vertex groups the Hessian couples (for the sparsity pattern).
   virtual void couplings(std::vector<std::vector<int>>& /*cliques*/) const {}

@@ -47,12 +47,15 @@ class PenaltyContactForm final : public Form {
   double value(const Eigen::VectorXd& x) const override;
   void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
   void add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override;
+  bool projects_hessian() const override { return project_; }
+  void add_exact_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override;
 
   ContactStats stats(const Eigen::VectorXd& x) const;
   const std::vector<std::shared_ptr<const Obstacle>>& obstacles() const { return obstacles_; }
   double frame() const { return frame_; }
 
  private:
+  void add_hessian_projected(const Eigen::VectorXd& x, BlockHessian& H, bool project) const;
   struct FrictionPair {
     int vertex = 0;
     int obstacle = 0;
