@@ -35,7 +35,7 @@ SolverSpec paper_solver(double linear_tolerance, int max_newton_iterations) {
   s.newton.max_iterations = max_newton_iterations;
   s.newton.linear_tolerance = linear_tolerance;
   s.linear.kind = "pcg";
-  s.linear.preconditioner = Preconditioner::BlockJacobi3;
+  s.linear.preconditioner = "block_jacobi";
   s.projection = Projection::Clamp;
   return s;
 }

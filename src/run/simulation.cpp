@@ -208,6 +208,7 @@ Model build_model(const Scene& scene) {
   m.material = build_material_detailed(scene.material);
   m.elastic = std::make_shared<ElasticForm>(m.disc, m.material.material, scene.solver.projection);
   m.problem = std::make_unique<Problem>(mesh.num_vertices());
+  m.problem->set_discretization(m.disc);  // for the linear solver's context (lattice, preconditioners)
   m.problem->add_form(m.elastic);
   m.surface = boundary_surface(mesh);
 
