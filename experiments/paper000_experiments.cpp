@@ -167,6 +167,7 @@ ExperimentRun run_experiment(const Scene& scene, const ExperimentOptions& option
   const VolumeMesh& mesh = disc->mesh();
   auto elastic = std::make_shared<ElasticForm>(disc, build_material(scene.material), scene.solver.projection);
   Problem problem(mesh.num_vertices());
+  problem.set_discretization(disc);
   problem.add_form(elastic);
   std::vector<KinematicCondition> kinematics;
   for (const auto& b : scene.boundary)
@@ -262,6 +263,7 @@ ScrambleResult run_scramble(const ScrambleConfig& c) {
   auto disc = std::make_shared<Discretization>(mesh, where);
   auto form = std::make_shared<ElasticForm>(disc, build_material(normalised_material(c.family, c.E, c.nu)), c.projection);
   Problem problem(mesh.num_vertices());
+  problem.set_discretization(disc);
   problem.add_form(form);
 
   ScrambleResult r;

@@ -148,7 +148,9 @@ TEST(Preconditioner, EachOneSolvesAnSpdSystemWithFixedDofs) {
     EXPECT_LE((A * x - b).norm(), 1.01e-10 * b.norm()) << name;
     EXPECT_LE((x - direct).norm(), 1e-6 * direct.norm()) << name;
     for (Eigen::Index i = 0; i < A.rows(); ++i)
-      if (fixed[i]) EXPECT_NEAR(x(i), b(i), 1e-8 * b.norm()) << name << " DOF " << i;
+      if (fixed[i]) {
+        EXPECT_NEAR(x(i), b(i), 1e-8 * b.norm()) << name << " DOF " << i;
+      }
   }
   // A mask of the wrong size is an error, not a silent misreading.
   Eigen::VectorXd x;
