@@ -123,13 +123,16 @@ TEST(LatticeStructure, NumbersTheCopiesOfNonManifoldVertices) {
 }
 
 TEST(LatticeStructure, AMismatchedStructureIsRejected) {
-  VolumeMesh m = box_lattice(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), Eigen::Vector3i(2, 2, 2));
-  VolumeMesh fewer = m;
-  fewer.lattice->vertex_point.conservativeResize(m.num_vertices() - 1, 3);
-  expect_contains(error_message([&] { fewer.validate("m.vtu"); }), {"m.vtu", "lists 26 vertices, the mesh has 27"});
-  VolumeMesh outside = m;
-  outside.lattice->element_cell(3, 1) = 2;
-  expect_contains(error_message([&] { outside.validate("m.vtu"); }), {"element 3 lies outside the lattice grid"});
+  const VolumeMesh m = box_lattice(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), Eigen::Vector3i(2, 2, 2));
+  ASSERT_TRUE(m.lattice);
+  LatticeStructure fewer = *m.lattice, outside = *m.lattice;
+  fewer.vertex_point.conservativeResize(m.num_vertices() - 1, 3);
+  expect_contains(error_message([&] { fewer.validate(m.num_vertices(), m.num_elements(), "m.vtu"); }),
+                  {"m.vtu", "lists 26 vertices, the mesh has 27"});
+  outside.element_cell(3, 1) = 2;
+  VolumeMesh with_outside = m;
+  with_outside.lattice = outside;
+  expect_contains(error_message([&] { with_outside.validate("m.vtu"); }), {"element 3 lies outside the lattice grid"});
 }
 
 TEST(LatticeStructure, SceneMeshesKeepIt) {
