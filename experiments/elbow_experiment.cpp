@@ -151,6 +151,7 @@ ElbowRun run_elbow(const ElbowConfig& c, const std::function<void(const ElbowFra
   material.target = YoungPoisson{c.E, c.nu};
   material.parameters.values = c.parameters;
   Problem problem(mesh.num_vertices());
+  problem.set_discretization(disc);
   problem.add_form(std::make_shared<ElasticForm>(disc, build_material(material), c.solver.projection));
   SelfContactSettings contact;
   // Default penalty: 50 E per cell of penetration, stiff against the flesh yet well conditioned.

@@ -35,7 +35,7 @@ SolverSpec paper_solver(double linear_tolerance, int max_newton_iterations) {
   s.newton.max_iterations = max_newton_iterations;
   s.newton.linear_tolerance = linear_tolerance;
   s.linear.kind = "pcg";
-  s.linear.preconditioner = Preconditioner::BlockJacobi3;
+  s.linear.preconditioner = "block_jacobi";
   s.projection = Projection::Clamp;
   return s;
 }
@@ -167,6 +167,7 @@ ExperimentRun run_experiment(const Scene& scene, const ExperimentOptions& option
   const VolumeMesh& mesh = disc->mesh();
   auto elastic = std::make_shared<ElasticForm>(disc, build_material(scene.material), scene.solver.projection);
   Problem problem(mesh.num_vertices());
+  problem.set_discretization(disc);
   problem.add_form(elastic);
   std::vector<KinematicCondition> kinematics;
   for (const auto& b : scene.boundary)
@@ -263,6 +264,7 @@ ScrambleResult run_scramble(const ScrambleConfig& c) {
   auto disc = std::make_shared<Discretization>(mesh, where);
   auto form = std::make_shared<ElasticForm>(disc, build_material(normalised_material(c.family, c.E, c.nu)), c.projection);
   Problem problem(mesh.num_vertices());
+  problem.set_discretization(disc);
   problem.add_form(form);
 
   ScrambleResult r;

@@ -21,6 +21,12 @@ void Problem::set_fixed(const std::vector<char>& fixed_dofs) {
   fixed_ = fixed_dofs;
 }
 
+void Problem::set_discretization(std::shared_ptr<const Discretization> discretization) {
+  if (discretization && discretization->mesh().num_vertices() != num_vertices_)
+    throw Error("the discretisation's vertex count differs from the problem's", "problem");
+  discretization_ = std::move(discretization);
+}
+
 double Problem::value(const Eigen::VectorXd& x) const {
   if (!is_valid(x)) return std::numeric_limits<double>::infinity();
   double v = 0.0;

@@ -45,6 +45,7 @@ void VolumeMesh::validate(const std::string& source) const {
       }
     }
   }
+  if (lattice) lattice->validate(num_vertices(), num_elements(), source);
 }
 
 }  // namespace sinew

@@ -134,6 +134,7 @@ Model build_model(const Scene& scene) {
   m.material = build_material_detailed(scene.material);
   build_elastic(scene, m);
   m.problem = std::make_shared<Problem>(mesh.num_vertices());
+  m.problem->set_discretization(m.disc);  // for the linear solver's context (lattice, preconditioners)
   m.problem->add_form(m.elastic);
   m.surface = boundary_surface(mesh);
   m.external_forces = external_forces(scene, *m.disc, m.surface);

@@ -16,6 +16,7 @@
 #include "scene_sections.hpp"
 #include "sinew/model/scene_rig.hpp"
 #include "sinew/element/mesh_validation.hpp"
+#include "sinew/solver/preconditioner.hpp"
 
 namespace sinew {
 namespace {
@@ -203,9 +204,9 @@ SolverSpec parse_solver(JsonObject o) {
     JsonObject l = o.object("linear");
     l.allow({"kind", "preconditioner", "tolerance", "eisenstat_walker", "max_iterations"});
     s.linear.kind = l.choice("kind", {"cholmod", "pcg"}, "cholmod");
-    s.linear.preconditioner =
-        l.choice("preconditioner", {"jacobi", "block_jacobi"}, "block_jacobi") == "jacobi" ? Preconditioner::Jacobi
-                                                                                            : Preconditioner::BlockJacobi3;
+    // Any registered preconditioner (solver/preconditioner.hpp); an unknown name is rejected
+    // with the registered ones listed.
+    s.linear.preconditioner = l.choice("preconditioner", registered_preconditioners(), s.linear.preconditioner);
     s.newton.linear_tolerance = l.positive("tolerance", s.newton.linear_tolerance);
     if (s.newton.linear_tolerance >= 1.0) l.fail("tolerance", "must be below 1");
     s.newton.eisenstat_walker = l.boolean("eisenstat_walker", false);

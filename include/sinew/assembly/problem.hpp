@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "sinew/element/discretization.hpp"
 #include "sinew/linalg/block_hessian.hpp"
 #include "sinew/forms/form.hpp"
 #include "sinew/linalg/linear_operator.hpp"
@@ -21,6 +22,11 @@ class Problem {
 
   void set_fixed(const std::vector<char>& fixed_dofs);  // one flag per DOF
   const std::vector<char>& fixed() const { return fixed_; }
+
+  // The discretisation the DOFs belong to, when there is one (solvers may use it and its
+  // lattice; solver/solver_context.hpp). It must have this problem's vertex count.
+  void set_discretization(std::shared_ptr<const Discretization> discretization);
+  const std::shared_ptr<const Discretization>& discretization() const { return discretization_; }
 
   double value(const Eigen::VectorXd& x) const;            // +inf where some form is invalid
   Eigen::VectorXd gradient(const Eigen::VectorXd& x) const;  // zero at fixed DOFs
@@ -39,6 +45,7 @@ class Problem {
   Eigen::Index num_vertices_;
   std::vector<std::shared_ptr<Form>> forms_;
   std::vector<char> fixed_;
+  std::shared_ptr<const Discretization> discretization_;
   std::unique_ptr<BlockHessian> hessian_;
   std::unique_ptr<SparseOperator> hessian_operator_;
 };
