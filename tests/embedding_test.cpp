@@ -94,7 +94,8 @@ TEST(Tetrahedralize, GmshKeepsTheSurfaceAsTheBoundary) {
     EXPECT_NEAR(volume, blob.volume(), 1e-9 * blob.volume());
     EXPECT_GT(tets.num_elements(), previous);  // a smaller max_edge refines the inside
     previous = tets.num_elements();
-    EXPECT_EQ(boundary_surface(tets).triangles.rows(), blob.num_faces());
+    // The boundary is the surface with its edges longer than max_edge split in their own plane.
+    EXPECT_EQ(boundary_surface(tets).triangles.rows(), bisect_long_edges(blob, max_edge).num_faces());
     const Embedding emb = embed_points(tets, blob.vertices);
     EXPECT_LT(emb.max_outside, 1e-9);
     EXPECT_LT((emb.positions(tets.rest_positions()) - blob.vertices).cwiseAbs().maxCoeff(), 1e-12);

@@ -259,9 +259,9 @@ TEST(Preconditioner, ARegisteredOneGetsTheNewtonSolvesContext) {
   LatticeSystem s(3);
   // Pull the top face up so that Newton has work to do.
   std::vector<KinematicCondition> bcs;
-  bcs.push_back({select_vertices(s.disc->mesh().vertices, PlaneSelector{{0, 0, 0}, {0, 0, -1}}, "bottom"), Pinned{}});
+  bcs.push_back({select_vertices(s.disc->mesh().vertices, PlaneSelector{{0, 0, 0}, {0, 0, -1}}, "bottom"), Pinned{}, "bottom"});
   bcs.push_back({select_vertices(s.disc->mesh().vertices, PlaneSelector{{0, 0, 1}, {0, 0, 1}}, "top"),
-                 Translation{{0, 0, 0.1}}});
+                 Translation{{0, 0, 0.1}}, "top"});
   std::vector<char> fixed(s.x.size(), 0);
   apply_kinematics(bcs, s.disc->mesh().vertices, 1.0, s.x, fixed);
   s.problem->set_fixed(fixed);

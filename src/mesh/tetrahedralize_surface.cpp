@@ -104,11 +104,10 @@ VolumeMesh tetrahedralize_surface(const TriangleSurface& input, double max_edge)
     throw Error(fmt::format("Gmsh needs a 2-manifold surface; this one has {} edges shared by more than two faces",
                             topology.nonmanifold_edges),
                 where);
-  // Gmsh keeps the boundary triangles and sizes the inside from them, so long ones are split
-  // first: those longer than twice max_edge (Gmsh's sizes are targets, met within about that
-  // factor), so a surface already finer than that stays the boundary exactly (an embedded
-  // render surface then maps onto it without interpolation error).
-  const TriangleSurface surface = bisect_long_edges(input, 2.0 * max_edge);
+  // Gmsh keeps the boundary triangles and sizes the inside from them, so edges longer than
+  // max_edge are split first, in their own plane: the boundary is then that split surface, on
+  // which every input vertex (and so an embedded render surface) still lies exactly.
+  const TriangleSurface surface = bisect_long_edges(input, max_edge);
   std::lock_guard lock(gmsh_mutex);
   VolumeMesh mesh;
   mesh.kind = ElementKind::Tet4;
