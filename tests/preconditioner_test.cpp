@@ -5,6 +5,8 @@
 // reached through the settings and receives the Newton solve's context.
 #include <gtest/gtest.h>
 
+#include "spd_test_support.hpp"
+
 #include <algorithm>
 #include <map>
 #include <random>
@@ -32,18 +34,7 @@ const std::vector<std::string> kBuiltIn = {"jacobi", "block_jacobi", "lagged_cho
 // A random SPD matrix with 3x3 vertex blocks (B^T B + 0.1 I), with the rows and columns of the
 // flagged DOFs replaced by the identity, as Problem::hessian does for fixed DOFs.
 Eigen::SparseMatrix<double> random_spd(int vertices, unsigned seed, const std::vector<char>& fixed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::uniform_int_distribution<int> pick(0, vertices - 1);
-  std::vector<Eigen::Triplet<double>> t;
-  const int n = 3 * vertices;
-  for (int r = 0; r < n; ++r)
-    for (int k = 0; k < 4; ++k) t.emplace_back(r, 3 * pick(rng) + k % 3, u(rng));
-  Eigen::SparseMatrix<double> B(n, n);
-  B.setFromTriplets(t.begin(), t.end());
-  Eigen::SparseMatrix<double> I(n, n);
-  I.setIdentity();
-  Eigen::SparseMatrix<double> A = Eigen::SparseMatrix<double>(B.transpose()) * B + 0.1 * I;
+  Eigen::SparseMatrix<double> A = test::random_spd(vertices, seed);
   for (int c = 0; c < A.outerSize(); ++c)
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it)
       if (!fixed.empty() && (fixed[it.row()] || fixed[it.col()])) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
