@@ -41,8 +41,15 @@ StepStats QuasistaticIntegrator::advance_frame(State& state, int frame, const It
       solved = target;
       stats.substeps += 1;
       step = std::min(1.0, 2.0 * step);
-    } else if (step > min_step) {
+    } else if (step > min_step && !r.tolerance_unreachable) {
       step *= 0.5;
+    } else if (step > min_step) {
+      // The tolerance, not the size of the motion, is the problem: a smaller step would fail the
+      // same way, only slower.
+      x = trial;
+      stats.converged = false;
+      stats.failure = r.failure + " (not split: a smaller motion step cannot reach it either)";
+      break;
     } else {
       x = trial;  // kept for inspection, never continued from
       stats.converged = false;

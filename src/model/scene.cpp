@@ -209,6 +209,8 @@ SolverSpec parse_solver(JsonObject o) {
       s.newton.test = ConvergenceTest::Relative;
       s.newton.residual_tolerance = n.positive("residual_tolerance", s.newton.residual_tolerance);
       if (s.newton.residual_tolerance >= 1.0) n.fail("residual_tolerance", "must be below 1 (a fraction of the force scale)");
+      if (s.newton.residual_tolerance < 1e-14)
+        n.fail("residual_tolerance", "must be at least 1e-14: double precision cannot resolve a smaller fraction");
       s.newton.step_tolerance = n.positive("step_tolerance", s.newton.step_tolerance);
       if (s.newton.step_tolerance >= 1.0) n.fail("step_tolerance", "must be below 1 (a fraction of the displacement)");
     } else {

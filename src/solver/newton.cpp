@@ -16,6 +16,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 constexpr double kForceFloor = 1e-8;  // x Problem::Scales::force
 constexpr double kLengthFloor = 1e-6;  // x Problem::Scales::length per vertex
+constexpr double kRoundOff = 1e-15;    // relative resolution of a residual (double precision)
 
 // The convergence test of NewtonSettings (see there).
 struct ConvergenceCheck {
@@ -80,7 +81,6 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
   double residual = g.norm();
   report.initial_residual = residual;
   ConvergenceCheck check{s, problem, residual, x};
-  const bool relative = s.test == ConvergenceTest::Relative;
   double step_norm = -1.0;
   double eta = s.linear_tolerance, previous_residual = residual;
   Eigen::VectorXd d, trial;
@@ -94,7 +94,7 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
     report.iterations = it;
     report.residual = residual;
     report.energy = energy;
-    report.force_scale = relative ? check.force_scale(state_scale) : 0.0;
+    report.force_scale = check.force_scale(state_scale);
     report.step_norm = std::max(step_norm, 0.0);
     if (check.passed(residual, state_scale, x, step_norm)) {
       // Lagged terms (contacts) are updated only at a converged state, never at the distorted
@@ -109,7 +109,7 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
       report.assembly_seconds += seconds_since(t0);
       report.residual = residual;
       report.energy = energy;
-      report.force_scale = relative ? check.force_scale(state_scale) : 0.0;
+      report.force_scale = check.force_scale(state_scale);
       if (!changed || check.passed(residual, state_scale, x, step_norm)) {
         report.converged = true;
         return report;
@@ -117,6 +117,11 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
     }
     if (it >= s.max_iterations) {
       report.failure = fmt::format("no convergence in {} Newton iterations ({})", it, describe_residual(report));
+      if (s.test == ConvergenceTest::Absolute && s.absolute_tolerance < kRoundOff * state_scale) {
+        report.tolerance_unreachable = true;
+        report.failure += fmt::format("; the tolerance {:g} is below round-off for forces of {:.3e}", s.absolute_tolerance,
+                                      state_scale);
+      }
       return report;
     }
     t0 = std::chrono::steady_clock::now();

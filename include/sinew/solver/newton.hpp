@@ -50,19 +50,21 @@ struct NewtonReport {
   int linear_iterations = 0;
   double initial_residual = 0.0;
   double residual = 0.0;
-  double force_scale = 0.0;  // the relative test's force scale at the end (0 for the absolute test)
+  double force_scale = 0.0;  // the relative test's force scale at the end (computed for either test)
   double step_norm = 0.0;    // 2-norm of the last Newton step (global coordinates)
   double energy = 0.0;
   double assembly_seconds = 0.0;
   double solve_seconds = 0.0;
   std::string failure;  // why it stopped without converging
+  // The absolute tolerance is below what double precision can resolve for this problem (under
+  // 1e-15 x the largest force of a form): no number of iterations or smaller steps would meet it.
+  bool tolerance_unreachable = false;
 };
 
 // The test in words, for summary.json and messages.
 std::string describe_convergence_test(const NewtonSettings& settings);
 
-// The dimensionless residual residual / force_scale a relative test reports (the absolute test:
-// the residual itself).
+// The dimensionless residual residual / force_scale (the residual itself if no scale is known).
 double convergence_measure(const NewtonReport& report);
 
 NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& linear,
