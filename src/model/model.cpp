@@ -47,6 +47,18 @@ Eigen::VectorXd traction_forces(const VolumeMesh& mesh, const BoundarySurface& s
   return f;
 }
 
+// Follower pressures on the boundary faces whose vertices are all selected.
+void build_pressures(const Scene& scene, Model& m) {
+  const VolumeMesh& mesh = m.disc->mesh();
+  for (size_t i = 0; i < scene.pressures.size(); ++i) {
+    const std::string where = fmt::format("{}: /loads/pressure/{}/select", scene.file.string(), i);
+    auto faces = faces_within(m.surface, select_vertices(mesh, scene.pressures[i].select, where), mesh.num_vertices());
+    if (faces.empty()) throw Error("selects no boundary face (a pressure acts on faces whose vertices are all selected)", where);
+    m.pressures.push_back(std::make_shared<PressureForm>(std::move(faces), mesh.rest_positions(), scene.pressures[i].pressure));
+    m.problem->add_form(m.pressures.back());
+  }
+}
+
 // The elastic form: the scene's material, or corotational hexahedra for the energy-limited
 // "corotational" model.
 void build_elastic(const Scene& scene, Model& m) {
@@ -77,7 +89,7 @@ void build_boundary(const Scene& scene, Model& m) {
   for (size_t i = 0; i < scene.boundary.size(); ++i) {
     const auto& b = scene.boundary[i];
     const std::string where = fmt::format("{}: /boundary/{}/select", file, i);
-    KinematicCondition c{select_vertices(mesh.vertices, b.select, where), b.motion,
+    KinematicCondition c{select_vertices(mesh, b.select, where), b.motion,
                          fmt::format("{}: /boundary/{}/motion", file, i)};
     for (int v : c.vertices) {
       if (owner[v] >= 0 && !(std::holds_alternative<Pinned>(b.motion) &&
@@ -114,13 +126,14 @@ Eigen::VectorXd external_forces(const Scene& scene, const Discretization& disc, 
   const VolumeMesh& mesh = disc.mesh();
   Eigen::VectorXd f = Eigen::VectorXd::Zero(disc.num_dofs());
   if (scene.gravity.squaredNorm() > 0.0) f += gravity_forces(lumped_mass(disc, scene.density), scene.gravity);
+  if (scene.body_force.squaredNorm() > 0.0) f += body_forces(disc, scene.body_force);
   for (size_t i = 0; i < scene.point_loads.size(); ++i) {
-    for (int v : select_vertices(mesh.vertices, scene.point_loads[i].select, fmt::format("{}: /loads/point/{}/select", file, i)))
+    for (int v : select_vertices(mesh, scene.point_loads[i].select, fmt::format("{}: /loads/point/{}/select", file, i)))
       f.segment<3>(3 * v) += scene.point_loads[i].force;
   }
   for (size_t i = 0; i < scene.tractions.size(); ++i) {
     const std::string where = fmt::format("{}: /loads/traction/{}/select", file, i);
-    f += traction_forces(mesh, surface, select_vertices(mesh.vertices, scene.tractions[i].select, where),
+    f += traction_forces(mesh, surface, select_vertices(mesh, scene.tractions[i].select, where),
                          scene.tractions[i].traction, where);
   }
   return f;
@@ -139,6 +152,7 @@ Model build_model(const Scene& scene) {
   m.surface = boundary_surface(mesh);
   m.external_forces = external_forces(scene, *m.disc, m.surface);
   if (m.external_forces.squaredNorm() > 0.0) m.problem->add_form(std::make_shared<ExternalForceForm>(m.external_forces));
+  build_pressures(scene, m);
   build_boundary(scene, m);
   m.rig = make_scene_rig(scene, mesh, *m.problem);  // bone springs and self-contact forms
   m.initial.x = mesh.rest_positions();

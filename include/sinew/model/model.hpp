@@ -12,6 +12,7 @@
 #include "sinew/forms/elastic_form.hpp"
 #include "sinew/forms/inertia_form.hpp"
 #include "sinew/forms/penalty_contact_form.hpp"
+#include "sinew/forms/pressure_form.hpp"
 #include "sinew/integrator/integrator.hpp"
 #include "sinew/mesh/surface.hpp"
 #include "sinew/model/scene.hpp"
@@ -31,7 +32,8 @@ struct Model {
   // energy only; its inertia, obstacles and limits are the stepper's).
   std::shared_ptr<Problem> problem;
   BoundarySurface surface;
-  Eigen::VectorXd external_forces;  // constant nodal forces: gravity, point loads, tractions
+  Eigen::VectorXd external_forces;  // constant nodal forces: gravity, body force, point loads, tractions
+  std::vector<std::shared_ptr<PressureForm>> pressures;  // follower pressures, in scene order
   std::vector<KinematicCondition> kinematics;  // the scene's boundary conditions, in order
   std::vector<int> boundary_owner;  // per vertex: the first boundary entry selecting it, or -1
   SceneRig rig;
@@ -49,7 +51,7 @@ struct Model {
 Model build_model(const Scene& scene);
 
 // The scene's constant external nodal forces (x[3 v + i] layout): gravity on the lumped masses,
-// point loads (the force on each selected vertex), and tractions (force per rest area on the
+// the body force (per rest volume, f_a = b * integral of N_a), point loads (the force on each selected vertex), and tractions (force per rest area on the
 // boundary faces whose vertices are all selected, distributed as t * integral of N_a over the
 // face). Throws a sinew::Error naming the load's JSON path if a selection is empty or a
 // traction selects no face.

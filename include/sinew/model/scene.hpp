@@ -75,6 +75,11 @@ struct Traction {
   Eigen::Vector3d traction;  // force per unit rest area
 };
 
+struct PressureLoad {
+  VertexSelector select;  // boundary faces whose vertices are all selected
+  double pressure = 0.0;  // force per current area, against the current outward normal (follower)
+};
+
 struct SolverSpec {
   NewtonSettings newton;
   LinearSolverSettings linear;
@@ -85,6 +90,7 @@ struct OutputSpec {
   bool vtu = true;
   bool obj = true;
   int every = 1;
+  bool selections = false;  // write selections.json (run/selection_output.hpp)
 };
 
 struct Scene {
@@ -97,6 +103,8 @@ struct Scene {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
   std::vector<PointLoad> point_loads;
   std::vector<Traction> tractions;
+  std::vector<PressureLoad> pressures;
+  Eigen::Vector3d body_force = Eigen::Vector3d::Zero();  // force per unit rest volume
   SolverSpec solver;
   int frames = 1;
   OutputSpec output;
