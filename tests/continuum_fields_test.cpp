@@ -194,10 +194,12 @@ TEST(ContinuumFields, FrameOutputWritesEveryFieldPerElementAndPerVertex) {
   for (const auto& a : vf.point_arrays) {
     points.push_back(a.name);
     EXPECT_EQ(a.values.size(), a.components * nv) << a.name;
-    if (a.name == "cauchy_stress")
+    if (a.name == "cauchy_stress") {
       for (Eigen::Index v = 0; v < nv; ++v) EXPECT_LE((tensor_at(a.values, v) - e.sigma).norm(), 1e-12 * e.sigma.norm());
-    if (a.name == "von_mises")
+    }
+    if (a.name == "von_mises") {
       for (Eigen::Index v = 0; v < nv; ++v) EXPECT_NEAR(a.values(v), e.mises, 1e-12 * e.mises);
+    }
   }
   EXPECT_EQ(cells, (std::vector<std::string>{"principal_stretches", "green_lagrange_strain", "cauchy_stress", "von_mises"}));
   EXPECT_EQ(points,

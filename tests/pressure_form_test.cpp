@@ -1,8 +1,9 @@
 // Follower pressure (forms/pressure_form.hpp): the force is -p times the current area normal,
 // the energy's derivatives where the load is conservative (closed surfaces: EveryForm in
-// derivative_check_test.cpp; open surfaces with fixed or in-plane boundary edges: here), the
-// symmetric stiffness against differences of the force, the scale factor; body forces; the
-// scene keys; and a run whose reactions balance the follower load.
+// derivative_check_test.cpp; open surfaces with a held or in-plane rim: here), the energy of an
+// open surface as the force's work along each search line, the symmetric stiffness against
+// differences of the force, the scale factor; body forces; the scene keys; and a run whose
+// reactions balance the follower load.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -151,14 +152,17 @@ TEST_P(Pressure, ClosedSurfaceEnergyIsPressureTimesVolumeChange) {
   EXPECT_LE(f.reshaped(3, f.size() / 3).rowwise().sum().norm(), 1e-13);
 }
 
+// Sets the form's work path to start at `start` (as Newton does at each iterate).
+void start_path_at(PressureForm& form, const Eigen::VectorXd& start) { form.linearize_at(start); }
+
 TEST_P(Pressure, OpenSurfaceWithFixedEdgesIsConservativeOnTheFreeDofs) {
   // The top face of the box with its rim held: the interior vertices' DOFs see the energy's
-  // gradient and a symmetric stiffness that is its Hessian.
+  // gradient and a symmetric stiffness that is its Hessian, wherever the path started (on the
+  // held rim).
   const VolumeMesh m = box(GetParam(), Eigen::Vector3i(4, 4, 1));
   PressureForm form(top_faces(m), m.rest_positions(), 5.0);
   EXPECT_FALSE(form.exact_derivatives());
-  EXPECT_EQ(form.boundary_edges().size(), GetParam() == ElementKind::Hex8 ? 16u : 16u);
-  Eigen::VectorXd x = m.rest_positions();
+  EXPECT_EQ(form.boundary_edges().size(), 16u);
   std::vector<int> free;
   for (Eigen::Index v = 0; v < m.num_vertices(); ++v) {
     const Vec3 p = m.vertices.row(v).transpose();
@@ -167,7 +171,11 @@ TEST_P(Pressure, OpenSurfaceWithFixedEdgesIsConservativeOnTheFreeDofs) {
     for (int i = 0; i < 3; ++i) free.push_back(static_cast<int>(3 * v + i));
   }
   ASSERT_EQ(free.size(), 27u);
-  x = perturbed(x, 0.04, 3);  // the rim moves too (it is held where it is)
+  const Eigen::VectorXd x = perturbed(m.rest_positions(), 0.04, 3);  // the rim is held where it is
+  Eigen::VectorXd start = x;
+  const Eigen::VectorXd other = perturbed(x, 0.05, 7);
+  for (int i : free) start(i) = other(i);
+  start_path_at(form, start);
   const Mismatch e = free_dof_mismatch(form, x, free);
   EXPECT_LE(e.gradient, 1e-7);
   EXPECT_LE(e.hessian, 1e-7);
@@ -179,21 +187,55 @@ TEST_P(Pressure, OpenSurfaceWithEdgesInRollerPlanesIsConservativeOnTheFreeDofs) 
   const VolumeMesh m = box(GetParam(), Eigen::Vector3i(3, 3, 1));
   PressureForm form(top_faces(m), m.rest_positions(), 5.0);
   Eigen::VectorXd x = perturbed(m.rest_positions(), 0.04, 4);
-  std::vector<int> free;
+  std::vector<int> free, all;
   for (Eigen::Index v = 0; v < m.num_vertices(); ++v) {
     const Vec3 p = m.vertices.row(v).transpose();
     for (int i = 0; i < 3; ++i) {
+      all.push_back(static_cast<int>(3 * v + i));
       const bool held = i < 2 && (p(i) < 1e-12 || p(i) > 1 - 1e-12);
       if (held) x(3 * v + i) = p(i);  // on its plane
       else free.push_back(static_cast<int>(3 * v + i));
     }
   }
+  Eigen::VectorXd start = x;
+  const Eigen::VectorXd other = perturbed(x, 0.05, 8);
+  for (int i : free) start(i) = other(i);
+  start_path_at(form, start);
   const Mismatch e = free_dof_mismatch(form, x, free);
   EXPECT_LE(e.gradient, 1e-7);
   EXPECT_LE(e.hessian, 1e-7);
-  // Off the planes the same load is not conservative: the check above can fail.
-  const Mismatch off = free_dof_mismatch(form, perturbed(m.rest_positions(), 0.04, 4), free);
+  // With every DOF free the same load has no potential: differences of the energy away from the
+  // path's start do not match the force, and the exact stiffness is not symmetric.
+  const Mismatch off = free_dof_mismatch(form, x, all);
   EXPECT_GT(off.gradient, 1e-4);
+  EXPECT_GT(off.hessian, 1e-3);
+}
+
+TEST_P(Pressure, OpenSurfaceEnergyAlongASearchLineIsTheForcesWork) {
+  // From the linearisation point x0 along any direction d, E(x0 + a d) - E(x0) is minus the work
+  // of the follower force over the segment (Simpson's rule on a fine grid as the reference), and
+  // linearising at x0 leaves E(x0) as it was.
+  const VolumeMesh m = box(GetParam(), Eigen::Vector3i(3, 2, 1));
+  PressureForm form(top_faces(m), m.rest_positions(), 5.0);
+  const Eigen::VectorXd x0 = perturbed(m.rest_positions(), 0.05, 9);
+  const Eigen::VectorXd d = perturbed(Eigen::VectorXd::Zero(x0.size()), 0.3, 10);
+  const double before = form.value(x0);
+  form.linearize_at(x0);
+  EXPECT_EQ(form.value(x0), before);
+  for (double a : {0.25, 1.0}) {
+    const int n = 200;
+    double work = 0.0;
+    for (int k = 0; k <= n; ++k) {
+      const double w = (k == 0 || k == n) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+      work += w * form.forces(x0 + (a * k / n) * d).dot(d);
+    }
+    work *= a / (3.0 * n);
+    EXPECT_NEAR(form.value(x0 + a * d) - before, -work, 1e-10 * std::abs(work)) << "a = " << a;
+  }
+  // The gradient at the linearisation point is the derivative of the energy there.
+  const double h = 1e-6;
+  EXPECT_NEAR((form.value(x0 + h * d) - form.value(x0 - h * d)) / (2 * h), gradient(form, x0).dot(d),
+              1e-7 * std::abs(gradient(form, x0).dot(d)));
 }
 
 TEST_P(Pressure, StiffnessIsTheSymmetricPartOfTheForceDerivative) {
@@ -286,9 +328,10 @@ TEST(PressureScene, CantileverUnderFollowerPressureBalancesItsReaction) {
   // axial part (a dead load of the same size would have none), and it balances the follower
   // force computed from the deformed faces' area normals.
   const double p = 2000.0;
-  const json loads = {{"pressure", {{{"select", {{"plane", {{"point", {0, 0, 0.2}}, {"normal", {0, 0, 1}}}}}}}, {"pressure", p}}}}};
-  json j = scene_json(loads);
+  json j = scene_json(json::parse(R"({"pressure": [{"select": {"plane": {"point": [0, 0, 0.2], "normal": [0, 0, 1]}}}]})"));
+  j["loads"]["pressure"][0]["pressure"] = p;
   j["frames"] = 2;
+  j["solver"] = json::parse(R"({"newton": {"tolerance": 1e-8}})");
   const Scene s = parse_scene(j, "dir/scene.json");
   const RunSummary r = run_scene(s, {});
   ASSERT_TRUE(r.all_converged());

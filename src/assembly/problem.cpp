@@ -75,6 +75,7 @@ void Problem::ensure_pattern() {
 const LinearOperator& Problem::hessian(const Eigen::VectorXd& x) {
   ensure_pattern();
   hessian_->set_zero();
+  for (const auto& f : forms_) f->linearize_at(x);  // non-conservative loads restart their work path here
   for (const auto& f : forms_) f->add_hessian(x, *hessian_);
   Eigen::SparseMatrix<double>& A = hessian_->matrix();
   // Identity rows and columns at fixed DOFs (keeps symmetry and the pattern).

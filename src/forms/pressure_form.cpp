@@ -40,19 +40,14 @@ Mat3 cross_matrix(const Vec3& a) {
   return A;
 }
 
-// Signed volume of the tetrahedron (o, a, b, c).
-double tet_volume(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
-  return (a - o).dot((b - o).cross(c - o)) / 6.0;
-}
-
 }  // namespace
 
 PressureForm::PressureForm(std::vector<std::vector<int>> faces, const Eigen::VectorXd& rest, double pressure)
-    : faces_(std::move(faces)), rest_(rest), pressure_(pressure) {
+    : faces_(std::move(faces)), pressure_(pressure), path_start_(rest) {
   if (faces_.empty()) throw Error("a pressure load needs at least one face", "pressure");
   if (!std::isfinite(pressure_)) throw Error("the pressure must be finite", "pressure");
   // Net directed use of each edge: interior edges of a consistently oriented surface cancel;
-  // what is left is the surface's boundary, in its faces' orientation.
+  // what is left is the surface's rim, in its faces' orientation.
   std::map<std::pair<int, int>, int> net;
   Vec3 sum = Vec3::Zero();
   int corners = 0;
@@ -60,10 +55,10 @@ PressureForm::PressureForm(std::vector<std::vector<int>> faces, const Eigen::Vec
     if (f.size() != 3 && f.size() != 4) throw Error(fmt::format("a face has {} nodes (3 or 4)", f.size()), "pressure");
     for (std::size_t k = 0; k < f.size(); ++k) {
       const int a = f[k], b = f[(k + 1) % f.size()];
-      if (a < 0 || b < 0 || 3 * std::max(a, b) + 2 >= rest_.size())
-        throw Error(fmt::format("face vertex out of range ({} vertices)", rest_.size() / 3), "pressure");
+      if (a < 0 || b < 0 || 3 * std::max(a, b) + 2 >= rest.size())
+        throw Error(fmt::format("face vertex out of range ({} vertices)", rest.size() / 3), "pressure");
       a < b ? ++net[{a, b}] : --net[{b, a}];
-      sum += rest_.segment<3>(3 * a);
+      sum += rest.segment<3>(3 * a);
       ++corners;
     }
   }
@@ -72,7 +67,7 @@ PressureForm::PressureForm(std::vector<std::vector<int>> faces, const Eigen::Vec
       boundary_edges_.push_back(count > 0 ? std::array<int, 2>{edge.first, edge.second}
                                           : std::array<int, 2>{edge.second, edge.first});
   origin_ = sum / corners;
-  rest_volume_ = enclosed_volume(rest_);
+  rest_volume_ = enclosed_volume(rest);
 }
 
 double PressureForm::enclosed_volume(const Eigen::VectorXd& x) const {
@@ -88,18 +83,33 @@ double PressureForm::enclosed_volume(const Eigen::VectorXd& x) const {
       }
       V += q.weight * (p - origin_).dot(xu.cross(xw)) / 3.0;
     }
-  // The ribbon from each boundary edge's current position (x_i -> x_j) back to its rest position
-  // closes the swept volume: triangles (x_j, x_i, X_i) and (x_j, X_i, X_j).
-  for (const auto& [i, j] : boundary_edges_) {
-    const Vec3 xi = x.segment<3>(3 * i), xj = x.segment<3>(3 * j);
-    const Vec3 Xi = rest_.segment<3>(3 * i), Xj = rest_.segment<3>(3 * j);
-    V += tet_volume(origin_, xj, xi, Xi) + tet_volume(origin_, xj, Xi, Xj);
-  }
   return V;
 }
 
 double PressureForm::value(const Eigen::VectorXd& x) const {
-  return scale_ * pressure_ * (enclosed_volume(x) - rest_volume_);
+  if (closed()) return scale_ * pressure_ * (enclosed_volume(x) - rest_volume_);
+  // Energy at the path's start plus the gradient's integral along the segment to x, which is
+  // quadratic in the segment's parameter: 2-point Gauss is exact.
+  const Eigen::VectorXd step = x - path_start_;
+  const double g = 0.5 / std::sqrt(3.0);
+  double E = path_energy_;
+  for (double t : {0.5 - g, 0.5 + g}) {
+    Eigen::VectorXd grad = Eigen::VectorXd::Zero(x.size());
+    add_gradient(path_start_ + t * step, grad);
+    E += 0.5 * grad.dot(step);
+  }
+  return E;
+}
+
+void PressureForm::linearize_at(const Eigen::VectorXd& x) {
+  if (closed() || x.size() != path_start_.size()) return;
+  path_energy_ = value(x);
+  path_start_ = x;
+}
+
+bool PressureForm::begin_solve(const Eigen::VectorXd& x) {
+  linearize_at(x);
+  return false;  // the energy at x is unchanged
 }
 
 void PressureForm::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {

@@ -31,7 +31,8 @@ class Problem {
   double value(const Eigen::VectorXd& x) const;            // +inf where some form is invalid
   Eigen::VectorXd gradient(const Eigen::VectorXd& x) const;  // zero at fixed DOFs
   // The projected Hessian with Dirichlet rows/columns replaced by the identity, as an operator
-  // (valid until the next call).
+  // (valid until the next call). First calls Form::linearize_at(x) on every form: x is the
+  // point the next search direction starts from.
   const LinearOperator& hessian(const Eigen::VectorXd& x);
   bool is_valid(const Eigen::VectorXd& x) const;
   // Form::refresh on every form; true if any energy changed.
