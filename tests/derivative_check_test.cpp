@@ -15,9 +15,11 @@
 #include "sinew/forms/external_force_form.hpp"
 #include "sinew/forms/inertia_form.hpp"
 #include "sinew/forms/penalty_contact_form.hpp"
+#include "sinew/forms/pressure_form.hpp"
 #include "sinew/forms/self_contact_form.hpp"
 #include "sinew/material/catalog.hpp"
 #include "sinew/mesh/lattice.hpp"
+#include "sinew/mesh/surface.hpp"
 #include "sinew/motion/obstacle.hpp"
 #include "sinew/motion/rig.hpp"
 
@@ -153,6 +155,16 @@ FormCase bone_springs_case() {
   return {form, perturbed(mesh.rest_positions(), 0.2, 12)};
 }
 
+// A follower pressure on the block's whole boundary (quads or triangles): a closed surface, so
+// the load is conservative and its symmetric stiffness exact (forms/pressure_form.hpp; open
+// surfaces are checked in pressure_form_test.cpp).
+FormCase pressure_case(ElementKind kind) {
+  auto d = block(kind);
+  auto form = std::make_shared<PressureForm>(boundary_surface(d->mesh()).faces, d->mesh().rest_positions(), 7.0);
+  EXPECT_TRUE(form->exact_derivatives());
+  return {form, deformed(*d, 13)};
+}
+
 // Every energy term of the library, in the configurations its users build. One line per form.
 std::vector<FormEntry> every_form() {
   std::vector<FormEntry> forms;
@@ -169,6 +181,8 @@ std::vector<FormEntry> every_form() {
   forms.push_back({"contact_friction_unprojected", [] { return contact_case(false); }});
   forms.push_back({"self_contact", self_contact_case});
   forms.push_back({"bone_springs", bone_springs_case});
+  forms.push_back({"pressure_closed_hex", [] { return pressure_case(ElementKind::Hex8); }});
+  forms.push_back({"pressure_closed_tet", [] { return pressure_case(ElementKind::Tet4); }});
   return forms;
 }
 

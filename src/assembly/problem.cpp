@@ -118,6 +118,7 @@ void Problem::ensure_pattern() {
 const LinearOperator& Problem::hessian(const Eigen::VectorXd& x) {
   ensure_pattern();
   hessian_->set_zero();
+  for (const auto& f : forms_) f->linearize_at(x);  // non-conservative loads restart their work path here
   for (const auto& f : forms_) f->add_hessian(x, *hessian_);
   if (!frame_of_.empty()) hessian_->change_basis(frame_of_);
   Eigen::SparseMatrix<double>& A = hessian_->matrix();

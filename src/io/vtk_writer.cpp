@@ -63,6 +63,19 @@ void check_fields(const std::vector<std::pair<std::string, Eigen::VectorXd>>& fi
   }
 }
 
+void check_arrays(const std::vector<VtuArray>& arrays, Eigen::Index entities, const char* what,
+                  std::set<std::string>& names) {
+  for (const VtuArray& a : arrays) {
+    if (a.name.empty()) throw Error(fmt::format("a {} array has an empty name", what));
+    if (!names.insert(a.name).second) throw Error(fmt::format("{} array name '{}' is used twice (or is reserved)", what, a.name));
+    if (a.components < 1) throw Error(fmt::format("{} array '{}' has {} components", what, a.name, a.components));
+    if (a.values.size() != a.components * entities) {
+      throw Error(fmt::format("{} array '{}' has {} values, expected {} x {}", what, a.name, a.values.size(),
+                              a.components, entities));
+    }
+  }
+}
+
 }  // namespace
 
 std::string xml_escape(const std::string& text) {
@@ -97,6 +110,8 @@ void write_vtu(const std::filesystem::path& path, const VolumeMesh& mesh, const 
     check_fields(fields.point_vectors, 3 * nv, "point vector", point_names);
     check_fields(fields.point_scalars, nv, "point scalar", point_names);
     check_fields(fields.cell_scalars, ne, "cell scalar", cell_names);
+    check_arrays(fields.point_arrays, nv, "point", point_names);
+    check_arrays(fields.cell_arrays, ne, "cell", cell_names);
   } catch (const Error& e) {
     throw e.within(path.string());
   }
@@ -115,6 +130,7 @@ void write_vtu(const std::filesystem::path& path, const VolumeMesh& mesh, const 
     write_doubles(os, scratch, "displacement", 3, displacement);
     for (const auto& [name, values] : fields.point_vectors) write_doubles(os, scratch, name, 3, values);
     for (const auto& [name, values] : fields.point_scalars) write_doubles(os, scratch, name, 1, values);
+    for (const VtuArray& a : fields.point_arrays) write_doubles(os, scratch, a.name, a.components, a.values);
     os << "      </PointData>\n";
 
     if (fields.cell_scalars.empty()) {
@@ -123,6 +139,7 @@ void write_vtu(const std::filesystem::path& path, const VolumeMesh& mesh, const 
       os << "      <CellData Scalars=\"" << xml_escape(fields.cell_scalars.front().first) << "\">\n";
     }
     for (const auto& [name, values] : fields.cell_scalars) write_doubles(os, scratch, name, 1, values);
+    for (const VtuArray& a : fields.cell_arrays) write_doubles(os, scratch, a.name, a.components, a.values);
     os << "      </CellData>\n";
 
     os << "      <Points>\n";

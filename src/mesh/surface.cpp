@@ -48,4 +48,16 @@ BoundarySurface boundary_surface(const VolumeMesh& mesh) {
   return s;
 }
 
+std::vector<std::vector<int>> faces_within(const BoundarySurface& surface, const std::vector<int>& selected,
+                                           Eigen::Index num_vertices) {
+  std::vector<char> in(static_cast<std::size_t>(num_vertices), 0);
+  for (int v : selected)
+    if (v >= 0 && v < num_vertices) in[static_cast<std::size_t>(v)] = 1;
+  std::vector<std::vector<int>> out;
+  for (const auto& face : surface.faces)
+    if (std::all_of(face.begin(), face.end(), [&](int v) { return in[static_cast<std::size_t>(v)] != 0; }))
+      out.push_back(face);
+  return out;
+}
+
 }  // namespace sinew

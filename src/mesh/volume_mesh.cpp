@@ -46,6 +46,12 @@ void VolumeMesh::validate(const std::string& source) const {
     }
   }
   if (lattice) lattice->validate(num_vertices(), num_elements(), source);
+  for (const MeshGroup& g : groups)
+    for (int v : g.vertices)
+      if (v < 0 || v >= num_vertices())
+        throw Error(fmt::format("group {} ('{}') refers to vertex {} (mesh has {} vertices)", g.tag, g.name, v,
+                                num_vertices()),
+                    source);
 }
 
 }  // namespace sinew

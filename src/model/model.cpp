@@ -48,6 +48,20 @@ Eigen::VectorXd traction_forces(const VolumeMesh& mesh, const BoundarySurface& s
   return f;
 }
 
+// Follower pressures on the boundary faces whose vertices are all selected.
+void build_pressures(const Scene& scene, Model& m) {
+  const VolumeMesh& mesh = m.disc->mesh();
+  for (size_t i = 0; i < scene.pressures.size(); ++i) {
+    const std::string where = fmt::format("{}: /loads/pressure/{}/select", scene.file.string(), i);
+    auto faces = faces_within(m.surface, select_vertices(mesh, scene.pressures[i].select, where), mesh.num_vertices());
+    if (faces.empty()) throw Error("selects no boundary face (a pressure acts on faces whose vertices are all selected)", where);
+    m.pressures.push_back(std::make_shared<PressureForm>(std::move(faces), mesh.rest_positions(), scene.pressures[i].pressure));
+    m.pressure_amplitudes.push_back(scene.pressures[i].amplitude);
+    m.pressures.back()->set_scale(scene.pressures[i].amplitude.at(1.0));  // as the other loads: frame 1 until a frame is set
+    m.problem->add_form(m.pressures.back());
+  }
+}
+
 // The elastic form: the scene's material, or corotational hexahedra for the energy-limited
 // "corotational" model.
 // Scales for dimensionless convergence tests: the body's size (bounding-box diagonal) and the
@@ -94,7 +108,7 @@ void build_boundary(const Scene& scene, Model& m) {
   for (size_t i = 0; i < scene.boundary.size(); ++i) {
     const auto& b = scene.boundary[i];
     const std::string where = fmt::format("{}: /boundary/{}/select", file, i);
-    KinematicCondition c{select_vertices(mesh.vertices, b.select, where), b.motion,
+    KinematicCondition c{select_vertices(mesh, b.select, where), b.motion,
                          fmt::format("{}: /boundary/{}/motion", file, i), b.components, b.direction};
     // A direction along a coordinate axis is that component: no rotated frame needed.
     if (c.direction)
@@ -212,15 +226,16 @@ std::vector<ScaledLoad> scene_loads(const Scene& scene, const Discretization& di
   std::vector<ScaledLoad> loads;
   if (scene.gravity.squaredNorm() > 0.0)
     loads.push_back({gravity_forces(lumped_mass(disc, scene.density), scene.gravity), scene.gravity_amplitude});
+  if (scene.body_force.squaredNorm() > 0.0) loads.push_back({body_forces(disc, scene.body_force), scene.body_force_amplitude});
   for (size_t i = 0; i < scene.point_loads.size(); ++i) {
     Eigen::VectorXd f = Eigen::VectorXd::Zero(disc.num_dofs());
-    for (int v : select_vertices(mesh.vertices, scene.point_loads[i].select, fmt::format("{}: /loads/point/{}/select", file, i)))
+    for (int v : select_vertices(mesh, scene.point_loads[i].select, fmt::format("{}: /loads/point/{}/select", file, i)))
       f.segment<3>(3 * v) += scene.point_loads[i].force;
     loads.push_back({std::move(f), scene.point_loads[i].amplitude});
   }
   for (size_t i = 0; i < scene.tractions.size(); ++i) {
     const std::string where = fmt::format("{}: /loads/traction/{}/select", file, i);
-    loads.push_back({traction_forces(mesh, surface, select_vertices(mesh.vertices, scene.tractions[i].select, where),
+    loads.push_back({traction_forces(mesh, surface, select_vertices(mesh, scene.tractions[i].select, where),
                                      scene.tractions[i].traction, where),
                      scene.tractions[i].amplitude});
   }
@@ -260,17 +275,21 @@ Model build_model(const Scene& scene) {
     m.load_form = std::make_shared<ExternalForceForm>(m.external_forces_at(1.0));
     m.problem->add_form(m.load_form);
   }
+  build_pressures(scene, m);
   build_boundary(scene, m);
   m.rig = make_scene_rig(scene, mesh, *m.problem);  // bone springs and self-contact forms
   m.initial.x = mesh.rest_positions();
   // Everything that depends on the frame number: prescribed positions and the loads' amplitudes.
   // Captures copies: the model is returned by value.
   PrescribedMotion motion = [kinematics = m.kinematics, rest = mesh.vertices, rig = m.rig, loads = m.loads,
-                             load_form = m.load_form, frames = m.vertex_frames](double frame, Eigen::VectorXd& x, std::vector<char>& fixed) {
+                             load_form = m.load_form, frames = m.vertex_frames, pressures = m.pressures,
+                             pressure_amplitudes = m.pressure_amplitudes](double frame, Eigen::VectorXd& x,
+                                                                          std::vector<char>& fixed) {
     apply_kinematics(kinematics, rest, frame, x, fixed);
     rig.apply(frame, rest, x, fixed);
     mark_frame_dofs(frames, fixed);
     if (load_form) load_form->forces() = loads_at(loads, x.size(), frame);
+    for (size_t i = 0; i < pressures.size(); ++i) pressures[i]->set_scale(pressure_amplitudes[i].at(frame));
   };
 
   if (scene.constraints) {  // energy-limited dynamics (the scene reader requires `dynamics` with it)

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <set>
 
@@ -29,11 +30,27 @@ int parse_axis(JsonObject& o, const std::string& key) {
 }
 
 VertexSelector parse_selector(JsonObject o) {
-  o.allow({"box", "plane", "indices"});
-  const int kinds = int(o.has("box")) + int(o.has("plane")) + int(o.has("indices"));
-  if (kinds != 1) o.fail("", "give exactly one of box, plane or indices");
+  o.allow({"box", "plane", "indices", "group", "dimension"});
+  const int kinds = int(o.has("box")) + int(o.has("plane")) + int(o.has("indices")) + int(o.has("group"));
+  if (kinds != 1) o.fail("", "give exactly one of box, plane, indices or group");
+  if (o.has("dimension") && !o.has("group")) o.fail("dimension", "only with group");
   VertexSelector out;
-  if (o.has("box")) {
+  if (o.has("group")) {
+    // A mesh file's group (Gmsh physical group) by name or tag; checked against the mesh when
+    // the model is built.
+    GroupSelector g;
+    const nlohmann::json& group = o.raw("group");
+    if (!group.is_string() && !group.is_number()) o.fail("group", "must be a group's name (a string) or tag (an integer)");
+    if (group.is_string()) {
+      g.name = o.string("group");
+      if (g.name->empty()) o.fail("group", "must not be empty");
+    } else {
+      g.tag = o.integer("group", std::numeric_limits<int>::min());
+    }
+    if (o.has("dimension")) g.dimension = o.integer("dimension", 0);
+    if (g.dimension && *g.dimension > 3) o.fail("dimension", "must be 0, 1, 2 or 3");
+    out = g;
+  } else if (o.has("box")) {
     JsonObject b = o.object("box");
     b.allow({"min", "max"});
     BoxSelector s{b.vec3("min"), b.vec3("max")};
@@ -266,7 +283,7 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
     for (JsonObject b : root.objects("boundary")) scene.boundary.push_back(parse_boundary_condition(b, parse_selector));
   if (root.has("loads")) {
     JsonObject loads = root.object("loads");
-    loads.allow({"gravity", "point", "traction"});
+    loads.allow({"gravity", "point", "traction", "pressure", "body_force"});
     if (loads.has("gravity") && loads.raw("gravity").is_object()) {
       JsonObject g = loads.object("gravity");
       g.allow({"acceleration", "amplitude"});
@@ -290,6 +307,22 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
                                    t.has("amplitude") ? parse_amplitude(t, "amplitude") : Amplitude{}});
         t.finish();
       }
+    if (loads.has("pressure"))
+      for (JsonObject p : loads.objects("pressure")) {
+        p.allow({"select", "pressure", "amplitude"});
+        scene.pressures.push_back({parse_selector(p.object("select")), p.number("pressure"),
+                                   p.has("amplitude") ? parse_amplitude(p, "amplitude") : Amplitude{}});
+        p.finish();
+      }
+    if (loads.has("body_force") && loads.raw("body_force").is_object()) {  // as gravity
+      JsonObject b = loads.object("body_force");
+      b.allow({"force", "amplitude"});
+      scene.body_force = b.vec3("force");
+      if (b.has("amplitude")) scene.body_force_amplitude = parse_amplitude(b, "amplitude");
+      b.finish();
+    } else {
+      scene.body_force = loads.vec3("body_force", Eigen::Vector3d::Zero());
+    }
     loads.finish();
   }
   if (root.has("solver")) scene.solver = parse_solver(root.object("solver"));
@@ -298,10 +331,11 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   if (scene.frames > kMaxFrames) root.fail("frames", fmt::format("must be at most {}, got {}", kMaxFrames, scene.frames));
   if (root.has("output")) {
     JsonObject o = root.object("output");
-    o.allow({"vtu", "obj", "every"});
+    o.allow({"vtu", "obj", "every", "selections"});
     scene.output.vtu = o.boolean("vtu", true);
     scene.output.obj = o.boolean("obj", true);
     scene.output.every = o.integer("every", 1, 1);
+    scene.output.selections = o.boolean("selections", false);
     o.finish();
   }
   parse_dynamics_sections(root, scene);  // scene_dynamics.cpp

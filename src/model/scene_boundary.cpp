@@ -73,6 +73,8 @@ void resolve_ramps(Scene& scene) {
   scene.gravity_amplitude.resolve_ramp(last);
   for (auto& p : scene.point_loads) p.amplitude.resolve_ramp(last);
   for (auto& t : scene.tractions) t.amplitude.resolve_ramp(last);
+  for (auto& p : scene.pressures) p.amplitude.resolve_ramp(last);
+  scene.body_force_amplitude.resolve_ramp(last);
 }
 
 }  // namespace sinew

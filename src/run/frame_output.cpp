@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "sinew/element/continuum_fields.hpp"
 #include "sinew/io/obj_writer.hpp"
 #include "sinew/io/vtk_writer.hpp"
 
@@ -36,6 +37,23 @@ ElementFields element_fields(const Model& model, const Eigen::VectorXd& x) {
   return f;
 }
 
+void add_continuum_fields(const Model& model, const Eigen::VectorXd& x, VtuFields& vf) {
+  const Discretization& d = *model.disc;
+  // Stresses need the material's P; the corotational model has none (its force is warped).
+  const Material* material = model.hyperelastic ? &model.hyperelastic->material() : nullptr;
+  const ContinuumFields c = continuum_fields(d, material, x);
+  auto both = [&](const char* name, int components, const Eigen::VectorXd& values) {
+    if (!values.size()) return;
+    if (std::string(name) != "J") vf.cell_arrays.push_back({name, components, values});  // J is a cell scalar already
+    vf.point_arrays.push_back({name, components, average_to_vertices(d, values, components)});
+  };
+  both("J", 1, c.J);
+  both("principal_stretches", 3, c.principal_stretches);
+  both("green_lagrange_strain", 9, c.green_lagrange);
+  both("cauchy_stress", 9, c.cauchy);
+  both("von_mises", 1, c.von_mises);
+}
+
 FrameOutput::FrameOutput(const Scene& scene, const Model& model, std::filesystem::path out)
     : scene_(scene), model_(model), out_(std::move(out)), embedded_(scene, model.disc->mesh()) {}
 
@@ -50,6 +68,7 @@ void FrameOutput::write(int frame, double time, const State& state) {
     vf.cell_scalars.push_back({"energy", fields.energy});
     if (model_.energy_limit) vf.cell_scalars.push_back({"energy_ratio", fields.energy / model_.energy_limit->max_energy});
     if (model_.integrator->dynamic() && state.v.size() == state.x.size()) vf.point_vectors = {{"velocity", state.v}};
+    add_continuum_fields(model_, state.x, vf);
     const std::string name = fmt::format("frame_{:04d}.vtu", frame);
     write_vtu(out_ / name, mesh, state.x, vf);
     std::erase_if(pvd_, [&](const auto& e) { return e.second == name; });

@@ -12,6 +12,7 @@
 #include "sinew/run/checkpoint.hpp"
 #include "sinew/run/frame_output.hpp"
 #include "sinew/run/run_summary.hpp"
+#include "sinew/run/selection_output.hpp"
 
 namespace sinew {
 
@@ -31,7 +32,7 @@ std::string scene_fingerprint(const Scene& scene) {
 // A fresh run replaces the files an earlier run left in the folder (only the names Sinew
 // writes), so a shorter run does not leave stale frames behind.
 void remove_previous_outputs(const std::filesystem::path& out) {
-  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|simulation\.pvd|summary\.json|checkpoint\.json))");
+  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|simulation\.pvd|summary\.json|checkpoint\.json|selections\.json))");
   std::error_code ec;
   if (!std::filesystem::is_directory(out, ec)) return;
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
@@ -67,6 +68,7 @@ void measure(const Model& model, const State& state, FrameRecord& record) {
   const Eigen::VectorXd& loads = model.load_form ? model.load_form->forces() : model.external_forces;
   record.external_force = loads.reshaped(3, loads.size() / 3).rowwise().sum();
   record.potential_energy = model.elastic->value(x) - loads.dot(x);
+  for (const auto& p : model.pressures) record.potential_energy += p->value(x);  // docs: path work on open surfaces
   if (model.contact) {
     const ContactStats s = model.contact->stats(x);
     record.potential_energy += s.penalty_energy;
@@ -132,6 +134,7 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
     remove_previous_outputs(out);
   }
   if (writing) ensure_directory(out);
+  if (writing && scene.output.selections) write_selections(out / "selections.json", scene, model);
   auto frame_time = [&](int frame) { return integrator.dynamic() ? frame * integrator.frame_duration() : double(frame); };
   if (first_frame == 1) output.write(0, frame_time(0), state);
 

@@ -55,7 +55,8 @@ class Problem {
   // reactions they imply, inertia) for relative convergence tests.
   Eigen::VectorXd gradient(const Eigen::VectorXd& x, double& force_scale) const;
   // The projected Hessian with Dirichlet rows/columns replaced by the identity, as an operator
-  // (valid until the next call).
+  // (valid until the next call). First calls Form::linearize_at(x) on every form: x is the
+  // point the next search direction starts from.
   const LinearOperator& hessian(const Eigen::VectorXd& x);
   bool is_valid(const Eigen::VectorXd& x) const;
   // Form::refresh on every form; true if any energy changed.

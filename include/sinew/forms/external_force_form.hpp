@@ -1,5 +1,6 @@
 #pragma once
 // Potential of constant external forces (gravity, point loads, tractions): E = -f . x.
+#include "sinew/element/discretization.hpp"
 #include "sinew/forms/form.hpp"
 
 namespace sinew {
@@ -20,5 +21,9 @@ class ExternalForceForm final : public Form {
 
 // Gravity on lumped masses: f_v = m_v g.
 Eigen::VectorXd gravity_forces(const Eigen::VectorXd& lumped_masses, const Eigen::Vector3d& g);
+
+// A body force b per unit rest volume, consistently: f_a = b * integral of N_a over the rest
+// volume (the lumped mass of unit density).
+Eigen::VectorXd body_forces(const Discretization& disc, const Eigen::Vector3d& b);
 
 }  // namespace sinew

@@ -40,6 +40,11 @@ class Form {
   // ends. Both return true if the energy changed.
   virtual bool begin_solve(const Eigen::VectorXd& /*x*/) { return false; }
   virtual bool refresh(const Eigen::VectorXd& /*x*/) { return false; }
+  // Called at every linearisation point (Problem::hessian, once per Newton iterate, before the
+  // Hessian is assembled). A form whose force has no potential (a follower pressure on an open
+  // surface) restarts there the path along which its energy, minus the work of its force, is
+  // integrated, so each line search from x sees the force's exact work; value(x) must not change.
+  virtual void linearize_at(const Eigen::VectorXd& /*x*/) {}
   // True if the last refresh changed couplings(): the Hessian pattern is then rebuilt.
   virtual bool couplings_changed() const { return false; }
   // False for a form whose gradient and Hessian are deliberate approximations of its value's

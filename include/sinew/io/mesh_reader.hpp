@@ -10,8 +10,9 @@
 //   .vtu   VTK XML UnstructuredGrid, one Piece, inline DataArrays in ascii or base64 binary
 //          (UInt32 or UInt64 headers, either byte order); appended or compressed data is
 //          rejected as unsupported.
-//   .msh   Gmsh ASCII, versions 2.2 and 4.1; tetrahedra (type 4) or hexahedra (type 5), other
-//          element types (the boundary's triangles, lines, points) skipped.
+//   .msh   Gmsh ASCII, versions 2.2 and 4.1; tetrahedra (type 4) or hexahedra (type 5); the
+//          physical groups (of points, lines, triangles, quads and the volume elements) become
+//          VolumeMesh::groups, named from $PhysicalNames.
 //   .node/.ele  TetGen: either name reads both files (same stem), 0- or 1-based.
 // A mesh is all hexahedra or all tetrahedra. Inverted elements are rejected with their index
 // unless `reorient_inverted` renumbers them (sinew/element/reorient.hpp). See docs/file-formats.md.

@@ -12,6 +12,15 @@
 
 namespace sinew {
 
+// An array of `components` values per vertex or element, flattened entity by entity:
+// values[components * i + k]. Tensors have 9 components in row-major order (ParaView reads a
+// 9-component array as a tensor and offers its eigenvalues, norm, ...).
+struct VtuArray {
+  std::string name;
+  int components = 1;
+  Eigen::VectorXd values;
+};
+
 // Named arrays written next to the mesh, in the order given.
 struct VtuFields {
   // Per-vertex 3-vectors, flattened like positions: v[3 i + k] (size 3 * vertices).
@@ -20,6 +29,9 @@ struct VtuFields {
   std::vector<std::pair<std::string, Eigen::VectorXd>> point_scalars;
   // Per-element scalars (size elements), e.g. J, energy_density, stress_norm, energy.
   std::vector<std::pair<std::string, Eigen::VectorXd>> cell_scalars;
+  // Arrays with any number of components, written after the ones above.
+  std::vector<VtuArray> point_arrays;
+  std::vector<VtuArray> cell_arrays;
 };
 
 // Writes the mesh at positions x (x[3 v + i]) with point data "displacement" = x - rest

@@ -18,4 +18,9 @@ struct BoundarySurface {
 
 BoundarySurface boundary_surface(const VolumeMesh& mesh);
 
+// The faces of `surface` whose vertices are all in `selected` (vertex ids of a mesh with
+// `num_vertices` vertices), as they are (outward, 3 or 4 nodes).
+std::vector<std::vector<int>> faces_within(const BoundarySurface& surface, const std::vector<int>& selected,
+                                           Eigen::Index num_vertices);
+
 }  // namespace sinew

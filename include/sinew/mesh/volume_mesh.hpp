@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "sinew/mesh/lattice_structure.hpp"
 
@@ -15,6 +16,14 @@ enum class ElementKind {
 int nodes_per_element(ElementKind kind);
 const char* to_string(ElementKind kind);
 
+// A set of vertices a mesh file names: a Gmsh physical group, the vertices of its elements.
+struct MeshGroup {
+  std::string name;   // "" when the file gives the group no name
+  int tag = 0;        // the file's number for the group (unique per dimension only)
+  int dimension = 0;  // of its elements: 3 volume, 2 surface (triangles, quads), 1 curve, 0 point
+  std::vector<int> vertices;  // sorted, unique
+};
+
 struct VolumeMesh {
   ElementKind kind = ElementKind::Hex8;
   Eigen::MatrixX3d vertices;  // rest positions, one row per vertex
@@ -22,6 +31,9 @@ struct VolumeMesh {
   // The grid of a hexahedral lattice (mesh/lattice.hpp, mesh/voxelize.hpp), for solvers that
   // use it; absent for meshes read from files and for lattices split into tetrahedra.
   std::optional<LatticeStructure> lattice;
+  // Vertex groups the mesh file defines (Gmsh physical groups); selectors pick them by name or
+  // tag (mesh/selection.hpp). Empty for generated meshes and other formats.
+  std::vector<MeshGroup> groups;
 
   Eigen::Index num_vertices() const { return vertices.rows(); }
   Eigen::Index num_elements() const { return elements.rows(); }

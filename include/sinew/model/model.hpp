@@ -13,6 +13,7 @@
 #include "sinew/forms/external_force_form.hpp"
 #include "sinew/forms/inertia_form.hpp"
 #include "sinew/forms/penalty_contact_form.hpp"
+#include "sinew/forms/pressure_form.hpp"
 #include "sinew/integrator/integrator.hpp"
 #include "sinew/mesh/surface.hpp"
 #include "sinew/model/scene.hpp"
@@ -45,12 +46,15 @@ struct Model {
   // energy only; its inertia, obstacles and limits are the stepper's).
   std::shared_ptr<Problem> problem;
   BoundarySurface surface;
-  // External loads (gravity, point loads, tractions) as nodal forces, each with its amplitude;
-  // the integrator sets `load_form` to their sum at each (fractional) frame it solves.
+  // External loads (gravity, body force, point loads, tractions) as nodal forces, each with its
+  // amplitude; the integrator sets `load_form` to their sum at each (fractional) frame it solves.
   std::vector<ScaledLoad> loads;
   std::shared_ptr<ExternalForceForm> load_form;
   Eigen::VectorXd external_forces;  // the loads at full amplitude (frame 1 of constant loads)
   Eigen::VectorXd external_forces_at(double frame) const;
+  // Follower pressures in scene order, and their amplitudes (the frame sets each one's scale).
+  std::vector<std::shared_ptr<PressureForm>> pressures;
+  std::vector<Amplitude> pressure_amplitudes;
   std::vector<KinematicCondition> kinematics;  // the scene's boundary conditions, in order
   // Per global DOF of a vertex without a rotated frame: the boundary entry prescribing it, or -1.
   std::vector<int> dof_owner;
@@ -78,7 +82,7 @@ struct Model {
 Model build_model(const Scene& scene);
 
 // The scene's constant external nodal forces (x[3 v + i] layout): gravity on the lumped masses,
-// point loads (the force on each selected vertex), and tractions (force per rest area on the
+// the body force (per rest volume, f_a = b * integral of N_a), point loads (the force on each selected vertex), and tractions (force per rest area on the
 // boundary faces whose vertices are all selected, distributed as t * integral of N_a over the
 // face). Throws a sinew::Error naming the load's JSON path if a selection is empty or a
 // traction selects no face.

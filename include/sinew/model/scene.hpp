@@ -81,6 +81,12 @@ struct Traction {
   Amplitude amplitude;
 };
 
+struct PressureLoad {
+  VertexSelector select;  // boundary faces whose vertices are all selected
+  double pressure = 0.0;  // force per current area, against the current outward normal (follower)
+  Amplitude amplitude;
+};
+
 struct SolverSpec {
   NewtonSettings newton;
   LinearSolverSettings linear;
@@ -91,6 +97,7 @@ struct OutputSpec {
   bool vtu = true;
   bool obj = true;
   int every = 1;
+  bool selections = false;  // write selections.json (run/selection_output.hpp)
 };
 
 struct Scene {
@@ -104,6 +111,9 @@ struct Scene {
   Amplitude gravity_amplitude;
   std::vector<PointLoad> point_loads;
   std::vector<Traction> tractions;
+  std::vector<PressureLoad> pressures;
+  Eigen::Vector3d body_force = Eigen::Vector3d::Zero();  // force per unit rest volume
+  Amplitude body_force_amplitude;
   SolverSpec solver;
   int frames = 1;
   OutputSpec output;

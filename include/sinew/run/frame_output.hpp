@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "sinew/io/vtk_writer.hpp"
 #include "sinew/model/model.hpp"
 #include "sinew/model/scene_surface.hpp"
 
@@ -36,5 +37,10 @@ struct ElementFields {
   Eigen::VectorXd energy, energy_density, J, stress_norm;
 };
 ElementFields element_fields(const Model& model, const Eigen::VectorXd& x);
+
+// Appends the continuum fields (element/continuum_fields.hpp) per element and per vertex:
+// J (per vertex; per element it is a cell scalar already), principal_stretches,
+// green_lagrange_strain and, for a hyperelastic material, cauchy_stress and von_mises.
+void add_continuum_fields(const Model& model, const Eigen::VectorXd& x, VtuFields& fields);
 
 }  // namespace sinew
