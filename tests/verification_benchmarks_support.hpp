@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -255,7 +256,7 @@ inline VolumeMesh annulus_mesh(double A, double B, double thickness, int Nr, int
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < Nt; ++j)
       for (int i = 0; i < n; ++i) {
-        const double R = A + (B - A) * i / Nr, t = 2.0 * M_PI * j / Nt;
+        const double R = A + (B - A) * i / Nr, t = 2.0 * std::numbers::pi * j / Nt;
         mesh.vertices.row(k * n * Nt + j * n + i) << R * std::cos(t), R * std::sin(t), k * thickness;
       }
   mesh.elements.resize(Nr * Nt, 8);
@@ -301,7 +302,7 @@ inline CylinderResult solve_cylinder(double A, double B, double a, std::shared_p
   r.failure = s.failure;
   for (int v : outer) r.outer_radius += s.x.segment<2>(3 * v).norm() / outer.size();
   // The condition's force on the body is minus the elastic gradient at its DOFs.
-  for (int v : inner) r.inner_force -= s.gradient.segment<2>(3 * v).dot(rest.row(v).head<2>().normalized());
+  for (int v : inner) r.inner_force -= s.gradient.segment<2>(3 * v).dot(rest.row(v).head<2>().transpose().normalized());
   return r;
 }
 

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <numbers>
 
 #include "sinew/io/mesh_reader.hpp"
 #include "sinew/material/derivative_check.hpp"
@@ -78,7 +79,7 @@ TEST(VerificationBenchmark, ThickCylinderMatchesTheRadialSolution) {
     const CylinderResult r = solve_cylinder(A, B, a, built.material, mu, Nr, Nt, steps);
     ASSERT_TRUE(r.converged) << "Nr = " << Nr << ": " << r.failure;
     const double thickness = (B - A) / Nr;
-    const double force_exact = -exact.inner_PR * 2.0 * M_PI * A * thickness;
+    const double force_exact = -exact.inner_PR * 2.0 * std::numbers::pi * A * thickness;
     const double err_u = std::abs(r.outer_radius - exact.outer_radius) / (exact.outer_radius - B);
     const double err_p = std::abs(r.inner_force - force_exact) / force_exact;
     std::printf("Nr %2d Nt %3d: outer radius %.8f (rel. error of u %.2e), inner force %.6e vs %.6e (rel. %.2e)\n",

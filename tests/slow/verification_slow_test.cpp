@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <numbers>
 #include <cstdlib>
 #include <string>
 
@@ -66,7 +67,7 @@ TEST(VerificationSlow, ThickCylinderConvergence) {
     const int Nt = 8 * Nr;
     const CylinderResult r = solve_cylinder(A, B, a, built.material, mu, Nr, Nt, 6);
     ASSERT_TRUE(r.converged) << "Nr = " << Nr << ": " << r.failure;
-    const double force_exact = -exact.inner_PR * 2.0 * M_PI * A * (B - A) / Nr;
+    const double force_exact = -exact.inner_PR * 2.0 * std::numbers::pi * A * (B - A) / Nr;
     const double err_u = std::abs(r.outer_radius - exact.outer_radius) / (exact.outer_radius - B);
     const double err_p = std::abs(r.inner_force - force_exact) / force_exact;
     std::printf("Nr %2d Nt %3d: rel. error outer displacement %.3e, inner force %.3e\n", Nr, Nt, err_u, err_p);
