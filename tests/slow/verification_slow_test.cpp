@@ -10,6 +10,7 @@
 #include <numbers>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "../verification_benchmarks_support.hpp"
 #include "sinew/material/spec.hpp"
@@ -24,32 +25,31 @@ bool slow_enabled() {
   return v && std::string(v) == "1";
 }
 
+// Plane strain (u_z = 0 everywhere), N = 2 ... 64: the published table is of the slab with u_z
+// free (tests/verification_benchmarks_test.cpp compares it at N = 2, 4), so this prints the
+// plane-strain convergence of the reference's energy and of the catalog's neo_hookean and asserts
+// monotone convergence with shrinking increments.
 TEST(VerificationSlow, CookMembraneConvergenceTable) {
   if (!slow_enabled()) GTEST_SKIP() << "set SINEW_SLOW_TESTS=1";
   auto split = std::make_shared<SplitNeoHookean>(kCookMu, cook_kappa());
-  // Sinew's catalog neo_hookean with the same Lame parameters, for comparison (not asserted
-  // against the reference: a different energy away from the rest shape).
   MaterialSpec spec;
   spec.family = "neo_hookean";
   spec.parameters.values["mu"] = kCookMu;
   spec.parameters.values["lambda"] = cook_kappa() - 2.0 / 3.0 * kCookMu;
   const auto standard = build_material_detailed(spec).material;
-  std::printf("%4s %12s %12s %10s %14s\n", "N", "tip (mm)", "ref Q1 (mm)", "diff", "neo_hookean");
-  double previous = 0.0;
+  std::printf("%4s %22s %22s\n", "N", "split NH, plane strain", "neo_hookean, plane str.");
+  std::vector<double> tips;
   for (int N : {2, 4, 8, 16, 32, 64}) {
     const CookResult r = solve_cook_membrane(N, split, kCookMu);
     ASSERT_TRUE(r.converged) << "N = " << N << ": " << r.failure;
     const CookResult s = solve_cook_membrane(N, standard, kCookMu);
     ASSERT_TRUE(s.converged) << "N = " << N << " (neo_hookean): " << s.failure;
-    const double ref = cook_reference_q1(N);
-    std::printf("%4d %12.4f %12.2f %10.4f %14.4f\n", N, r.tip, ref, r.tip - ref, s.tip);
+    std::printf("%4d %22.4f %22.4f\n", N, r.tip, s.tip);
     std::fflush(stdout);
-    EXPECT_NEAR(r.tip, ref, 0.006) << "N = " << N;
-    EXPECT_GT(r.tip, previous) << "N = " << N << ": trilinear hexahedra converge from below";
-    previous = r.tip;
+    tips.push_back(r.tip);
   }
-  // The finest mesh is within 0.1 % of the reference's converged (Q2) value.
-  EXPECT_NEAR(previous, kCookReferenceConverged, 1e-3 * kCookReferenceConverged);
+  for (size_t i = 1; i < tips.size(); ++i) EXPECT_GT(tips[i], tips[i - 1]) << "trilinear hexahedra converge from below";
+  for (size_t i = 2; i < tips.size(); ++i) EXPECT_LT(tips[i] - tips[i - 1], 0.5 * (tips[i - 1] - tips[i - 2]));
 }
 
 TEST(VerificationSlow, ThickCylinderConvergence) {
