@@ -3,6 +3,11 @@
 // mesh-convergence table and a thick-walled cylinder against the 1-D radial solution. Shared by
 // the default tests (small sizes) and the `slow` tests (full tables).
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <functional>
 #include <memory>
 #include <numbers>
@@ -15,6 +20,8 @@
 #include "sinew/forms/external_force_form.hpp"
 #include "sinew/material/material.hpp"
 #include "sinew/mesh/volume_mesh.hpp"
+#include "sinew/model/scene.hpp"
+#include "sinew/run/simulation.hpp"
 #include "sinew/solver/linear_solver.hpp"
 #include "sinew/solver/newton.hpp"
 
@@ -67,7 +74,7 @@ class SplitNeoHookean final : public StretchMaterial {
 // thickness 1 in z, N x N trilinear hexahedra mapped from the unit square as in the reference
 // (x = 48 u; y between the lower edge 44/48 x and the upper edge 44 + 16/48 x at fraction v).
 // Vertex (i, j, k) has index k (N+1)^2 + j (N+1) + i.
-inline VolumeMesh cook_membrane_mesh(int N) {
+inline VolumeMesh cook_membrane_mesh(int N, double thickness = 1.0) {
   VolumeMesh mesh;
   mesh.kind = ElementKind::Hex8;
   const int n = N + 1;
@@ -77,7 +84,7 @@ inline VolumeMesh cook_membrane_mesh(int N) {
       for (int i = 0; i < n; ++i) {
         const double x = 48.0 * i / N, t = static_cast<double>(j) / N;
         const double y = (1.0 - t) * (44.0 / 48.0) * x + t * (44.0 + (16.0 / 48.0) * x);
-        mesh.vertices.row(k * n * n + j * n + i) << x, y, static_cast<double>(k);
+        mesh.vertices.row(k * n * n + j * n + i) << x, y, k * thickness;
       }
   mesh.elements.resize(N * N, 8);
   auto id = [&](int i, int j, int k) { return k * n * n + j * n + i; };
@@ -145,10 +152,18 @@ struct CookResult {
   int iterations = 0;
   std::string failure;
 };
-// plane_strain = false leaves u_z free (except on the clamped edge): a 1 mm slab, nearly plane stress.
+// How the slab's thickness direction is treated:
+// * PlaneStrain: u_z = 0 at every vertex (the setup);
+// * FreeSlab: the reference's actual setup, the 1 mm slab with u_z free away from the clamp (nearly
+//   plane stress); its symmetric solution is unstable at N >= 8 for a minimiser (see the docs);
+// * HalfSlab: the same slab's symmetric solution as a half model: thickness 0.5, u_z = 0 on the
+//   mid-plane z = 0 (a symmetry plane), the same traction, so the load (0.5 N) and the tip
+//   deflection are those of the full slab constrained to stay symmetric.
+enum class CookThickness { PlaneStrain, FreeSlab, HalfSlab };
 inline CookResult solve_cook_membrane(int N, std::shared_ptr<const Material> material, double mu,
-                                      bool plane_strain = true) {
-  const VolumeMesh mesh = cook_membrane_mesh(N);
+                                      CookThickness thickness_mode = CookThickness::PlaneStrain) {
+  const double thickness = thickness_mode == CookThickness::HalfSlab ? 0.5 : 1.0;
+  const VolumeMesh mesh = cook_membrane_mesh(N, thickness);
   const int n = N + 1;
   std::vector<char> fixed(3 * mesh.num_vertices(), 0);
   Eigen::VectorXd loads = Eigen::VectorXd::Zero(3 * mesh.num_vertices());
@@ -157,14 +172,16 @@ inline CookResult solve_cook_membrane(int N, std::shared_ptr<const Material> mat
     for (int j = 0; j < n; ++j) {
       const int left = k * n * n + j * n, right = left + N;
       fixed[3 * left] = fixed[3 * left + 1] = 1;
-      // The faces of the edge x = 48 are 16/N x 1 rectangles: A/4 of each to each corner.
+      // The faces of the edge x = 48 are 16/N x thickness rectangles: A/4 of each to each corner.
       const double faces = (j == 0 || j == N) ? 1.0 : 2.0;
-      loads(3 * right + 1) = faces * traction * (16.0 / N) * 1.0 / 4.0;
+      loads(3 * right + 1) = faces * traction * (16.0 / N) * thickness / 4.0;
     }
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < n; ++j) fixed[3 * (k * n * n + j * n) + 2] = 1;
-  if (plane_strain)
+  if (thickness_mode == CookThickness::PlaneStrain)
     for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v) fixed[3 * v + 2] = 1;
+  if (thickness_mode == CookThickness::HalfSlab)
+    for (int v = 0; v < n * n; ++v) fixed[3 * v + 2] = 1;  // the mid-plane z = 0
   const StaticSolve s = solve_static(mesh, std::move(material), fixed, loads, 10, mu * 60.0 * 60.0);
   CookResult r;
   r.converged = s.converged;
@@ -251,6 +268,29 @@ inline RadialSolution cylinder_radial_solution(double A, double B, double a, dou
   return out;
 }
 
+// The same cylinder under an internal follower pressure p (force per deformed area) with the
+// outer surface free: the inner radius a is unknown too. The Cauchy radial stress at r = a is -p;
+// in nominal terms (plane strain, Nanson: da = l_T l_Z dA) P_R(A) = -p a / A. For each trial a the
+// displacement problem above gives P_R(A; a); the pressure problem's a solves
+// P_R(A; a) + p a / A = 0, found by bisection (the left side is p at a = A and decreases: a
+// Neo-Hookean plane-strain cylinder has no pressure maximum).
+struct PressureSolution {
+  double inner_radius = 0.0, outer_radius = 0.0;
+};
+inline PressureSolution cylinder_pressure_solution(double A, double B, double p, double mu, double lambda) {
+  auto g = [&](double a) { return cylinder_radial_solution(A, B, a, mu, lambda).inner_PR + p * a / A; };
+  double lo = A, hi = 1.5 * A;
+  while (g(hi) > 0.0) hi = A + 2.0 * (hi - A);
+  for (int it = 0; it < 60 && hi - lo > 1e-14 * A; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (g(mid) > 0.0 ? lo : hi) = mid;
+  }
+  PressureSolution out;
+  out.inner_radius = 0.5 * (lo + hi);
+  out.outer_radius = cylinder_radial_solution(A, B, out.inner_radius, mu, lambda).outer_radius;
+  return out;
+}
+
 // A full annulus A <= R <= B, one layer of thickness `thickness` in z, Nr x Nt hexahedra.
 // Vertex (i radial, j around, k) has index k Nr1 Nt + j Nr1 + i with Nr1 = Nr + 1.
 inline VolumeMesh annulus_mesh(double A, double B, double thickness, int Nr, int Nt) {
@@ -309,6 +349,54 @@ inline CylinderResult solve_cylinder(double A, double B, double a, std::shared_p
   // The condition's force on the body (its reaction) is the elastic gradient at its DOFs.
   for (int v : inner) r.inner_force += s.gradient.segment<2>(3 * v).dot(rest.row(v).head<2>().transpose().normalized());
   return r;
+}
+
+// ---- Thick-walled cylinder under internal pressure, through the scene file ----
+
+// examples/verification/thick_cylinder.json on the quarter annulus of Nr radial x 2 Nr
+// circumferential hexahedra (make_thick_cylinder_mesh.py writes the mesh into `dir`): symmetry
+// rollers, plane strain, a follower pressure on the inner surface, all as a user writes them.
+struct PressureCylinderRun {
+  double pressure = 0.0, thickness = 0.0;
+  double inner_radius = 0.0, outer_radius = 0.0;  // mean deformed radii of the inner/outer vertices
+  double symmetry_reaction = 0.0;  // y-reaction of the roller on y = 0 (the hoop force's balance)
+  double mu = 0.0, lambda = 0.0;
+  bool converged = false;
+  std::string failure;
+};
+inline PressureCylinderRun run_pressure_cylinder(int Nr, const std::filesystem::path& dir) {
+  const std::filesystem::path folder = std::filesystem::path(SINEW_EXAMPLES) / "verification";
+  const std::filesystem::path mesh = dir / ("thick_cylinder_N" + std::to_string(Nr) + ".msh");
+  const std::string command = "python3 '" + (folder / "make_thick_cylinder_mesh.py").string() + "' " +
+                              std::to_string(Nr) + " '" + mesh.string() + "'";
+  if (std::system(command.c_str()) != 0) throw std::runtime_error("failed: " + command);
+  std::ifstream in(folder / "thick_cylinder.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json j = nlohmann::json::parse(text.str());
+  j["mesh"]["file"] = mesh.string();
+  const Scene scene = parse_scene(j, folder / "thick_cylinder.json");
+  const RunSummary summary = run_scene(scene, RunOptions{});
+  PressureCylinderRun out;
+  out.converged = summary.all_converged();
+  if (!out.converged && !summary.frames.empty()) out.failure = summary.frames.back().failure;
+  out.pressure = j["loads"]["pressure"][0]["pressure"].get<double>();
+  out.thickness = 1.0 / Nr;  // (B - A) / Nr, as the mesh generator makes it
+  const auto built = build_material_detailed(scene.material);
+  out.mu = built.parameters.values.at("mu");
+  out.lambda = built.parameters.values.at("lambda");
+  const VolumeMesh rest = build_scene_mesh(scene);
+  int inner = 0, outer = 0;
+  for (Eigen::Index v = 0; v < rest.num_vertices(); ++v) {
+    const double R = rest.vertices.row(v).head<2>().norm();
+    const double r = summary.x.segment<2>(3 * v).norm();
+    if (std::abs(R - 1.0) < 1e-9) out.inner_radius += r, ++inner;
+    if (std::abs(R - 2.0) < 1e-9) out.outer_radius += r, ++outer;
+  }
+  out.inner_radius /= inner;
+  out.outer_radius /= outer;
+  if (!summary.frames.empty()) out.symmetry_reaction = summary.frames.back().reactions[0](1);
+  return out;
 }
 
 }  // namespace sinew::verification
