@@ -129,48 +129,59 @@ TEST(HomogeneousDeformation, SimpleShearFaceForceMatchesTheClosedForms) {
 }
 
 // Equibiaxial stress through a scene: rollers on x = 0, y = 0, z = 0, the faces x = 1 and y = 1
-// displaced outwards by the same amount, z free. The thickness stretch t solves P33(l, l, t) = 0;
-// for Neo-Hookean (docs/verification.md) mu (t - 1/t) + lambda log(l^2 t) / t = 0, and the face
-// force is P11 = mu (l - 1/l) + lambda log(l^2 t) / l per unit rest area.
+// displaced outwards by the same amount, z free. The thickness stretch t solves P33(l, l, t) = 0
+// and the face force is P11 per unit rest area, with the closed forms of docs/verification.md:
+//   Neo-Hookean: P33 = mu (t - 1/t) + lambda log(l^2 t) / t, P11 = mu (l - 1/l) + lambda log(l^2 t) / l;
+//   Stable Neo-Hookean (Eq. 14, I_C = 2 l^2 + t^2, J = l^2 t, m = mu (1 - 1/(I_C + 1)),
+//   alpha = 1 + 3 mu / (4 lambda)): P33 = m t + lambda (J - alpha) l^2, P11 = m l + lambda (J - alpha) l t.
 TEST(HomogeneousDeformation, EquibiaxialStressThroughTheSolver) {
   const double l = 1.25;
-  json j = json::parse(R"({
-    "mesh": {"box": {"min": [0, 0, 0], "max": [1, 1, 0.5]}, "cells": [3, 3, 2]},
-    "material": {"family": "neo_hookean", "E": 1e5, "nu": 0.3},
-    "boundary": [
-      {"select": {"plane": {"point": [0, 0, 0], "normal": [-1, 0, 0]}}, "components": ["x"]},
-      {"select": {"plane": {"point": [0, 0, 0], "normal": [0, -1, 0]}}, "components": ["y"]},
-      {"select": {"plane": {"point": [0, 0, 0], "normal": [0, 0, -1]}}, "components": ["z"]},
-      {"select": {"plane": {"point": [1, 0, 0], "normal": [1, 0, 0]}}, "components": ["x"],
-       "motion": {"type": "displace", "displacement": [0.25, 0, 0]}},
-      {"select": {"plane": {"point": [0, 1, 0], "normal": [0, 1, 0]}}, "components": ["y"],
-       "motion": {"type": "displace", "displacement": [0, 0.25, 0]}}
-    ],
-    "solver": {"newton": {"residual_tolerance": 1e-12, "step_tolerance": 1e-10}},
-    "frames": 2
-  })");
-  const Scene scene = parse_scene(j, "equibiaxial.json");
-  const RunSummary s = run_scene(scene, RunOptions{});
-  ASSERT_EQ(s.frames.size(), 2u);
-  ASSERT_TRUE(s.frames[1].converged) << s.frames[1].failure;
-  const auto built = build_material_detailed(scene.material);
-  const double mu = built.parameters.values.at("mu"), lambda = built.parameters.values.at("lambda");
-  auto p33 = [&](double t) { return mu * (t - 1 / t) + lambda * std::log(l * l * t) / t; };
-  double lo = 0.3, hi = 1.0;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (p33(lo) * p33(mid) <= 0 ? hi : lo) = mid;
+  for (const std::string family : {"neo_hookean", "stable_neo_hookean"}) {
+    json j = json::parse(R"({
+      "mesh": {"box": {"min": [0, 0, 0], "max": [1, 1, 0.5]}, "cells": [3, 3, 2]},
+      "material": {"E": 1e5, "nu": 0.3},
+      "boundary": [
+        {"select": {"plane": {"point": [0, 0, 0], "normal": [-1, 0, 0]}}, "components": ["x"]},
+        {"select": {"plane": {"point": [0, 0, 0], "normal": [0, -1, 0]}}, "components": ["y"]},
+        {"select": {"plane": {"point": [0, 0, 0], "normal": [0, 0, -1]}}, "components": ["z"]},
+        {"select": {"plane": {"point": [1, 0, 0], "normal": [1, 0, 0]}}, "components": ["x"],
+         "motion": {"type": "displace", "displacement": [0.25, 0, 0]}},
+        {"select": {"plane": {"point": [0, 1, 0], "normal": [0, 1, 0]}}, "components": ["y"],
+         "motion": {"type": "displace", "displacement": [0, 0.25, 0]}}
+      ],
+      "solver": {"newton": {"residual_tolerance": 1e-12, "step_tolerance": 1e-10}},
+      "frames": 2
+    })");
+    j["material"]["family"] = family;
+    const Scene scene = parse_scene(j, "equibiaxial.json");
+    const RunSummary s = run_scene(scene, RunOptions{});
+    ASSERT_EQ(s.frames.size(), 2u) << family;
+    ASSERT_TRUE(s.frames[1].converged) << family << ": " << s.frames[1].failure;
+    const auto built = build_material_detailed(scene.material);
+    const double mu = built.parameters.values.at("mu"), lambda = built.parameters.values.at("lambda");
+    const bool snh = family == "stable_neo_hookean";
+    const double alpha = 1.0 + 0.75 * mu / lambda;
+    auto m = [&](double t) { return mu * (1.0 - 1.0 / (2 * l * l + t * t + 1.0)); };
+    auto p33 = [&](double t) {
+      return snh ? m(t) * t + lambda * (l * l * t - alpha) * l * l : mu * (t - 1 / t) + lambda * std::log(l * l * t) / t;
+    };
+    double lo = 0.3, hi = 1.0;
+    for (int i = 0; i < 200; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (p33(lo) * p33(mid) <= 0 ? hi : lo) = mid;
+    }
+    const double t = 0.5 * (lo + hi);
+    const double P11 = snh ? m(t) * l + lambda * (l * l * t - alpha) * l * t
+                           : mu * (l - 1 / l) + lambda * std::log(l * l * t) / l;
+    const FrameRecord& f = s.frames[1];
+    const double area = 1.0 * 0.5;  // rest area of the faces x = 1 and y = 1
+    EXPECT_NEAR(f.reactions[3](0), P11 * area, 1e-8 * P11) << family;
+    EXPECT_NEAR(f.reactions[4](1), P11 * area, 1e-8 * P11) << family;
+    EXPECT_NEAR(f.volume, 0.5 * l * l * t, 1e-9) << family;
+    const Eigen::MatrixX3d rest = build_scene_mesh(scene).vertices;
+    for (Eigen::Index v = 0; v < rest.rows(); ++v)
+      ASSERT_NEAR(s.x(3 * v + 2), t * rest(v, 2), 1e-9) << family << ", vertex " << v;
   }
-  const double t = 0.5 * (lo + hi);
-  const double P11 = mu * (l - 1 / l) + lambda * std::log(l * l * t) / l;
-  const FrameRecord& f = s.frames[1];
-  const double area = 1.0 * 0.5;  // rest area of the faces x = 1 and y = 1
-  EXPECT_NEAR(f.reactions[3](0), P11 * area, 1e-8 * P11);
-  EXPECT_NEAR(f.reactions[4](1), P11 * area, 1e-8 * P11);
-  EXPECT_NEAR(f.volume, 0.5 * l * l * t, 1e-9);
-  const Eigen::MatrixX3d rest = build_scene_mesh(scene).vertices;
-  for (Eigen::Index v = 0; v < rest.rows(); ++v)
-    EXPECT_NEAR(s.x(3 * v + 2), t * rest(v, 2), 1e-9) << "vertex " << v;
 }
 
 }  // namespace
