@@ -171,7 +171,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"mesh": {"box": {"min": [0,0,0], "max": [1,1,1], "size": 1}}})", "/mesh/box/size: unknown field"},
         BadScene{R"({"material": {"nu2": 1}})", "/material/nu2: unknown key"},
         BadScene{R"({"solver": {"linear": {"precond": "jacobi"}}})", "/solver/linear/precond: unknown field"},
-        BadScene{R"({"boundary": [{"select": {"indices": [0], "plane": 1}}]})", "/boundary/0/select: give exactly one of box, plane or indices"},
+        BadScene{R"({"boundary": [{"select": {"indices": [0], "plane": 1}}]})", "/boundary/0/select: give exactly one of box, plane, indices or group"},
+        BadScene{R"({"solver": {"predictor": "linear"}})", "/solver/predictor: "},
         BadScene{R"({"boundary": [{"select": {"planes": 1}}]})", "/boundary/0/select/planes: unknown field"},
         BadScene{R"({"loads": {"point": [{"select": {"indices": [0]}, "force": [0,0,1], "f": 1}]}})", "/loads/point/0/f: unknown field"},
         // wrong types
@@ -256,7 +257,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"solver": {"linear": {"tolerance": 1.5}}})", "/solver/linear/tolerance: must be below 1"},
         BadScene{R"({"solver": {"linear": {"kind": "pardiso"}}})", "/solver/linear/kind: unknown value 'pardiso'"},
         BadScene{R"({"solver": {"linear": {"preconditioner": "ilu"}}})", "/solver/linear/preconditioner: unknown value 'ilu'"},
-        BadScene{R"({"solver": {"projection": "flip"}})", "/solver/projection: unknown value 'flip' (expected one of: clamp, abs, none)"},
+        BadScene{R"({"solver": {"projection": "flip"}})", "/solver/projection: unknown value 'flip' (expected one of: adaptive, clamp, abs, none)"},
         BadScene{R"({"output": {"every": 0}})", "/output/every: must be at least 1, got 0"}));
 
 TEST(Scene, RootMustBeAnObject) {

@@ -122,7 +122,8 @@ TEST(Simulation, WritesEveryFrameAndCompleteReports) {
     EXPECT_EQ(f["newton_iterations"], r.newton_iterations);
     EXPECT_GE(r.newton_iterations, 1);
     EXPECT_EQ(f["linear_iterations"], r.linear_iterations);  // one per Newton step with CHOLMOD
-    EXPECT_EQ(r.linear_iterations, r.newton_iterations);
+    // A true-Hessian solve that fails (solver.projection "adaptive") is solved again, projected.
+    EXPECT_EQ(r.linear_iterations, r.newton_iterations + static_cast<int>(r.counter("exact_hessian_fallbacks")));
     EXPECT_LT(f["residual"].get<double>(), 1e-7);
     EXPECT_EQ(f["energy"].get<double>(), r.energy);
     EXPECT_GT(r.energy, 0.0);
@@ -278,6 +279,44 @@ TEST(Simulation, LargeFrameStepsAreSplitUntilTheyConverge) {
   ASSERT_TRUE(s.all_converged()) << s.frames[0].failure;
   EXPECT_GT(s.frames[0].substeps, 1);
   EXPECT_NEAR(s.x.reshaped(3, s.vertices).row(0).maxCoeff(), 1.0 + 2.4, 1e-12);  // the moved end
+}
+
+// The predictor (the last converged increment, extrapolated) starts each frame nearer its
+// equilibrium: fewer Newton iterations to the same answer.
+TEST(Simulation, PredictorCutsNewtonIterationsToTheSameAnswer) {
+  json j = bar();
+  j["boundary"][1]["motion"]["per_frame"] = {0.3, 0, 0};
+  j["frames"] = 5;
+  j["solver"]["newton"] = {{"residual_tolerance", 1e-10}, {"step_tolerance", 1e-8}};
+  j["solver"]["predictor"] = "none";
+  const RunSummary plain = run(parse_scene(j, "bar.json"));
+  j["solver"]["predictor"] = "extrapolate";
+  const RunSummary predicted = run(parse_scene(j, "bar.json"));
+  ASSERT_TRUE(plain.all_converged());
+  ASSERT_TRUE(predicted.all_converged());
+  int n_plain = 0, n_predicted = 0;
+  for (size_t i = 0; i < plain.frames.size(); ++i) {
+    n_plain += plain.frames[i].newton_iterations;
+    n_predicted += predicted.frames[i].newton_iterations;
+  }
+  EXPECT_LT(n_predicted, n_plain);
+  EXPECT_LT((plain.x - predicted.x).cwiseAbs().maxCoeff(), 1e-7);  // 1e-7 of the bar's length
+  EXPECT_GT(predicted.frames.back().counters.size(), 0u);  // "predicted_steps" recorded
+}
+
+// A solve that fails with nothing changing inside the frame (no prescribed motion, constant
+// loads) is not repeated as smaller 'substeps': each would be the same solve.
+TEST(Simulation, FailedSolveWithNothingToSplitIsNotRepeated) {
+  json j = bar();
+  j["boundary"].erase(1);
+  j["loads"] = {{"gravity", {0, 0, -9.81}}};
+  j["frames"] = 1;
+  j["solver"]["newton"] = {{"residual_tolerance", 1e-12}, {"max_iterations", 1}};
+  const RunSummary s = run(parse_scene(j, "hanging.json"));
+  ASSERT_EQ(s.frames.size(), 1u);
+  EXPECT_FALSE(s.frames[0].converged);
+  EXPECT_EQ(s.frames[0].newton_iterations, 1);  // one solve, not 1 + kMaxMotionSplits
+  test::expect_contains(s.frames[0].failure, {"not split: no motion, load or obstacle changes within the step"});
 }
 
 TEST(Simulation, ModelProblemsSurfaceBeforeAnythingIsWritten) {

@@ -115,11 +115,16 @@ void Problem::ensure_pattern() {
   hessian_operator_ = std::make_unique<SparseOperator>(hessian_->matrix());
 }
 
-const LinearOperator& Problem::hessian(const Eigen::VectorXd& x) {
+const LinearOperator& Problem::hessian(const Eigen::VectorXd& x, bool exact) {
   ensure_pattern();
   hessian_->set_zero();
   for (const auto& f : forms_) f->linearize_at(x);  // non-conservative loads restart their work path here
-  for (const auto& f : forms_) f->add_hessian(x, *hessian_);
+  for (const auto& f : forms_) {
+    if (exact)
+      f->add_exact_hessian(x, *hessian_);
+    else
+      f->add_hessian(x, *hessian_);
+  }
   if (!frame_of_.empty()) hessian_->change_basis(frame_of_);
   Eigen::SparseMatrix<double>& A = hessian_->matrix();
   // Identity rows and columns at fixed DOFs (keeps symmetry and the pattern).

@@ -1,17 +1,55 @@
 #include "sinew/integrator/quasistatic_integrator.hpp"
 
+#include <cmath>
 #include <fmt/format.h>
+
+#include "sinew/core/error.hpp"
 
 namespace sinew {
 
 QuasistaticIntegrator::QuasistaticIntegrator(std::shared_ptr<Problem> problem, PrescribedMotion motion,
                                              std::shared_ptr<PenaltyContactForm> contact,
-                                             std::unique_ptr<LinearSolver> linear, NewtonSettings newton)
+                                             std::unique_ptr<LinearSolver> linear, NewtonSettings newton,
+                                             bool predictor)
     : problem_(std::move(problem)),
       motion_(std::move(motion)),
       contact_(std::move(contact)),
       linear_(std::move(linear)),
-      newton_(newton) {}
+      newton_(newton),
+      predictor_(predictor) {}
+
+bool QuasistaticIntegrator::predict(Eigen::VectorXd& trial, double length) const {
+  if (!predictor_ || last_length_ <= 0.0 || last_increment_.size() != trial.size()) return false;
+  // The fixed mask is in the problem's vertex frames (rotated for direction conditions).
+  const std::vector<char>& fixed = problem_->fixed();
+  Eigen::VectorXd increment = (length / last_length_) * last_increment_;
+  problem_->to_local(increment);
+  for (Eigen::Index i = 0; i < increment.size(); ++i)
+    if (fixed[static_cast<size_t>(i)]) increment(i) = 0.0;
+  problem_->to_global(increment);
+  const Eigen::VectorXd predicted = trial + increment;
+  // The safeguard: only a start with less energy (finite: no inverted element of a log-based
+  // material) replaces the plain one.
+  const double plain = problem_->value(trial), extrapolated = problem_->value(predicted);
+  if (!(std::isfinite(extrapolated) && extrapolated < plain)) return false;
+  trial = predicted;
+  return true;
+}
+
+bool QuasistaticIntegrator::split_changes_problem(double from, double to, const Eigen::VectorXd& x) {
+  if (contact_) return true;  // obstacles may move within the step
+  Eigen::VectorXd at_end = x, at_middle = x;
+  std::vector<char> fixed_end(static_cast<size_t>(x.size()), 0), fixed_middle = fixed_end;
+  motion_(to, at_end, fixed_end);
+  problem_->set_fixed(fixed_end);
+  // A motion that inverts elements at the end of the step is what splitting is for.
+  if (!problem_->is_valid(at_end)) return true;
+  const Eigen::VectorXd g_end = problem_->gradient(at_end);
+  motion_(0.5 * (from + to), at_middle, fixed_middle);  // also sets the loads of the midpoint
+  problem_->set_fixed(fixed_middle);
+  const Eigen::VectorXd g_middle = problem_->gradient(at_end);
+  return at_end != at_middle || fixed_end != fixed_middle || g_end != g_middle;
+}
 
 StepStats QuasistaticIntegrator::advance_frame(State& state, int frame, const IterationProgress& progress) {
   StepStats stats;
@@ -28,7 +66,8 @@ StepStats QuasistaticIntegrator::advance_frame(State& state, int frame, const It
     motion_(target, trial, fixed);
     problem_->set_fixed(fixed);
     if (contact_) contact_->begin_step(x, solved, target, 0.0);  // obstacles at `target`
-    const NewtonReport r = newton_solve(*problem_, trial, *linear_, newton_, newton_progress);
+    if (predict(trial, target - solved)) stats.add_counter("predicted_steps", 1.0);
+    const NewtonReport r = newton_solve(*problem_, trial, *linear_, newton_, newton_progress, &x);
     stats.newton_iterations += r.iterations;
     stats.linear_iterations += r.linear_iterations;
     stats.assembly_seconds += r.assembly_seconds;
@@ -36,19 +75,29 @@ StepStats QuasistaticIntegrator::advance_frame(State& state, int frame, const It
     stats.residual = r.residual;
     stats.force_scale = r.force_scale;
     stats.energy = r.energy;
+    if (newton_.exact_tail) {
+      stats.add_counter("exact_hessian_iterations", r.exact_iterations);
+      stats.add_counter("exact_hessian_fallbacks", r.exact_fallbacks);
+      stats.add_counter("exact_hessian_short_steps", r.exact_short_steps);
+    }
     if (r.converged) {
+      last_increment_ = trial - x;
+      last_length_ = target - solved;
       x = trial;
       solved = target;
       stats.substeps += 1;
       step = std::min(1.0, 2.0 * step);
-    } else if (step > min_step && !r.tolerance_unreachable) {
+    } else if (step > min_step && !r.tolerance_unreachable && split_changes_problem(solved, target, x)) {
       step *= 0.5;
     } else if (step > min_step) {
-      // The tolerance, not the size of the motion, is the problem: a smaller step would fail the
-      // same way, only slower.
+      // A smaller step would fail the same way, only slower: the tolerance is below round-off,
+      // or nothing changes within the step.
       x = trial;
       stats.converged = false;
-      stats.failure = r.failure + " (not split: a smaller motion step cannot reach it either)";
+      stats.failure = r.failure + (r.tolerance_unreachable
+                                       ? " (not split: a smaller motion step cannot reach it either)"
+                                       : " (not split: no motion, load or obstacle changes within the step, so a "
+                                         "smaller step would repeat the same solve)");
       break;
     } else {
       x = trial;  // kept for inspection, never continued from
@@ -59,6 +108,33 @@ StepStats QuasistaticIntegrator::advance_frame(State& state, int frame, const It
     }
   }
   return stats;
+}
+
+nlohmann::json QuasistaticIntegrator::checkpoint_state() const {
+  if (!predictor_ || last_length_ <= 0.0) return nlohmann::json::object();
+  return {{"last_increment", std::vector<double>(last_increment_.data(), last_increment_.data() + last_increment_.size())},
+          {"last_length", last_length_}};
+}
+
+void QuasistaticIntegrator::restore_state(const nlohmann::json& state, int /*frame*/) {
+  last_increment_.resize(0);
+  last_length_ = 0.0;
+  if (!state.is_object()) throw Error("must be an object", "");
+  if (!state.contains("last_increment") && !state.contains("last_length")) return;  // nothing to predict from
+  if (!state.contains("last_length") || !state.at("last_length").is_number() ||
+      !(state.at("last_length").get<double>() > 0.0) || !(state.at("last_length").get<double>() <= 1.0))
+    throw Error("must be a number in (0, 1]", "/last_length");
+  const nlohmann::json& list = state.contains("last_increment") ? state.at("last_increment") : nlohmann::json();
+  if (!list.is_array() || list.size() != static_cast<size_t>(problem_->num_dofs()))
+    throw Error(fmt::format("must be an array of {} numbers (3 per vertex)", problem_->num_dofs()), "/last_increment");
+  Eigen::VectorXd increment(static_cast<Eigen::Index>(list.size()));
+  for (size_t i = 0; i < list.size(); ++i) {
+    if (!list[i].is_number() || !std::isfinite(list[i].get<double>()))
+      throw Error("must be a finite number", fmt::format("/last_increment/{}", i));
+    increment(static_cast<Eigen::Index>(i)) = list[i].get<double>();
+  }
+  last_increment_ = std::move(increment);
+  last_length_ = state.at("last_length").get<double>();
 }
 
 }  // namespace sinew

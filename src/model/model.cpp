@@ -320,7 +320,8 @@ Model build_model(const Scene& scene) {
   if (m.contact) m.problem->add_form(m.contact);
   if (!scene.dynamics) {
     m.integrator = std::make_unique<QuasistaticIntegrator>(m.problem, std::move(motion), m.contact,
-                                                           make_linear_solver(scene.solver.linear), scene.solver.newton);
+                                                           make_linear_solver(scene.solver.linear), scene.solver.newton,
+                                                           scene.solver.predictor);
     return m;
   }
   const DynamicsSpec& d = *scene.dynamics;

@@ -209,7 +209,7 @@ MeshSpec parse_mesh(JsonObject o, const std::filesystem::path& folder) {
 }
 
 SolverSpec parse_solver(JsonObject o) {
-  o.allow({"newton", "linear", "projection"});
+  o.allow({"newton", "linear", "projection", "predictor"});
   SolverSpec s;
   if (o.has("newton")) {
     JsonObject n = o.object("newton");
@@ -256,7 +256,11 @@ SolverSpec parse_solver(JsonObject o) {
     s.linear.max_iterations = l.integer("max_iterations", 1, s.linear.max_iterations);
     l.finish();
   }
-  s.projection = parse_projection(o.choice("projection", {"clamp", "abs", "none"}, "clamp"));
+  const std::string projection = o.choice("projection", {"adaptive", "clamp", "abs", "none"}, "adaptive");
+  // "adaptive": the clamped Hessian far from equilibrium, the true one near it (NewtonSettings::exact_tail).
+  s.projection = parse_projection(projection == "adaptive" ? "clamp" : projection);
+  s.newton.exact_tail = projection == "adaptive";
+  s.predictor = o.choice("predictor", {"extrapolate", "none"}, "extrapolate") == "extrapolate";
   o.finish();
   return s;
 }

@@ -13,10 +13,13 @@ namespace {
 class CholmodSolver final : public LinearSolver {
  public:
   using LinearSolver::solve;
+  // A failed factorisation (an indefinite true Hessian, a singular projected one) is handled
+  // here, by a fallback or a shift: CHOLMOD must not print its own warning to stdout.
+  CholmodSolver() { llt_.cholmod().print = 0; }
   std::string name() const override { return "cholmod"; }
 
   LinearSolveReport solve(const LinearOperator& op, const Eigen::VectorXd& b, Eigen::VectorXd& x, double,
-                          const SolverContext&) override {
+                          const SolverContext& context) override {
     if (!op.matrix()) throw Error("CHOLMOD needs an assembled matrix; use pcg with a matrix-free operator", "solver.linear");
     const Eigen::SparseMatrix<double>& A = *op.matrix();
     const SerialOpenMpScope serial_cholmod;
@@ -27,7 +30,9 @@ class CholmodSolver final : public LinearSolver {
     // A PSD-projected Hessian can be singular (clamped modes of unconstrained parts); shift
     // the diagonal slightly and retry rather than give up.
     double shift = 0.0;
-    for (int attempt = 0; attempt < 6; ++attempt) {
+    // An indefinite true Hessian is not shifted into a different matrix: its failure is the answer.
+    const int attempts = context.may_be_indefinite ? 1 : 6;
+    for (int attempt = 0; attempt < attempts; ++attempt) {
       llt_.setShift(shift);
       llt_.factorize(A);
       if (llt_.info() == Eigen::Success) {

@@ -65,7 +65,7 @@ double convergence_measure(const NewtonReport& r) {
 
 NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& linear,
                           const NewtonSettings& s,
-                          const std::function<void(const NewtonIterate&)>& progress) {
+                          const std::function<void(const NewtonIterate&)>& progress, const Eigen::VectorXd* origin) {
   NewtonReport report;
   if (!problem.is_valid(x)) {
     report.failure = "initial state is outside the energy's domain (e.g. inverted elements of a "
@@ -80,7 +80,7 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
   report.assembly_seconds += seconds_since(t0);
   double residual = g.norm();
   report.initial_residual = residual;
-  ConvergenceCheck check{s, problem, residual, x};
+  ConvergenceCheck check{s, problem, residual, origin && origin->size() == x.size() ? *origin : x};
   double step_norm = -1.0;
   double eta = s.linear_tolerance, previous_residual = residual;
   Eigen::VectorXd d, trial;
@@ -90,6 +90,10 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
   // What the linear solver and its preconditioner may use besides the matrix; the fixed mask is
   // the problem's own (set before the solve, unchanged during it).
   const SolverContext context{problem.discretization(), problem.fixed()};
+  SolverContext exact_context = context;
+  exact_context.may_be_indefinite = true;
+  bool try_exact = false;
+  double retry_below = std::numeric_limits<double>::infinity();
   for (int it = 0;; ++it) {
     report.iterations = it;
     report.residual = residual;
@@ -124,19 +128,42 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
       }
       return report;
     }
-    t0 = std::chrono::steady_clock::now();
-    const LinearOperator& H = problem.hessian(x);
-    report.assembly_seconds += seconds_since(t0);
-
     if (s.eisenstat_walker && it > 0) {
       // Eisenstat-Walker choice 2 with the usual safeguard.
       const double ratio = residual / previous_residual;
       eta = std::clamp(std::max(0.9 * ratio * ratio, 0.9 * eta * eta), 1e-8, 0.5);
     }
-    t0 = std::chrono::steady_clock::now();
-    const LinearSolveReport lin = linear.solve(H, -g, d, eta, context);
-    report.solve_seconds += seconds_since(t0);
-    report.linear_iterations += lin.iterations;
+    // The true Hessian first when the tail has begun; the projected one otherwise or if it fails.
+    bool exact = false;
+    int linear_iterations = 0;
+    if (try_exact) {
+      t0 = std::chrono::steady_clock::now();
+      const LinearOperator& H = problem.hessian(x, true);
+      report.assembly_seconds += seconds_since(t0);
+      t0 = std::chrono::steady_clock::now();
+      const LinearSolveReport lin = linear.solve(H, -g, d, eta, exact_context);
+      report.solve_seconds += seconds_since(t0);
+      report.linear_iterations += lin.iterations;
+      linear_iterations = lin.iterations;
+      exact = lin.converged && d.allFinite() && g.dot(d) < 0.0;
+      if (!exact) {
+        ++report.exact_fallbacks;
+        try_exact = false;
+        retry_below = 0.1 * residual;
+      }
+    }
+    if (!exact) {
+      t0 = std::chrono::steady_clock::now();
+      const LinearOperator& H = problem.hessian(x);
+      report.assembly_seconds += seconds_since(t0);
+      t0 = std::chrono::steady_clock::now();
+      const LinearSolveReport lin = linear.solve(H, -g, d, eta, context);
+      report.solve_seconds += seconds_since(t0);
+      report.linear_iterations += lin.iterations;
+      linear_iterations += lin.iterations;
+    } else {
+      ++report.exact_iterations;
+    }
 
     // A direction that does not descend (failed or inexact solve) falls back to -g. Both are in
     // the problem's local DOFs (rotated vertex frames), where the slope is the same.
@@ -165,7 +192,20 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
     g = problem.gradient(x, state_scale);
     report.assembly_seconds += seconds_since(t0);
     residual = g.norm();
-    if (progress) progress({it + 1, residual, energy, step.step, lin.iterations});
+    if (s.exact_tail) {
+      if (exact) {
+        if (step.step < 1.0) {  // the quadratic model was poor: back to the projection
+          ++report.exact_short_steps;
+          try_exact = false;
+          retry_below = 0.1 * residual;
+        }
+      } else {
+        // After a fallback, the next try waits until the residual has dropped tenfold.
+        try_exact = report.exact_fallbacks + report.exact_short_steps < kMaxExactFallbacks && newton_direction && step.step == 1.0 &&
+                    residual < previous_residual && residual < retry_below;
+      }
+    }
+    if (progress) progress({it + 1, residual, energy, step.step, linear_iterations});
   }
 }
 

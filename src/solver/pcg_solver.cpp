@@ -50,6 +50,7 @@ LinearSolveReport PcgSolver::solve(const LinearOperator& op, const Eigen::Vector
     if (r_norm <= threshold) break;
     M.apply(r, z);
     const double rz_next = r.dot(z);
+    if (!(rz_next > 0.0)) break;  // an indefinite preconditioner (from an indefinite matrix)
     p = z + (rz_next / rz) * p;
     rz = rz_next;
   }

@@ -57,7 +57,8 @@ class Problem {
   // The projected Hessian with Dirichlet rows/columns replaced by the identity, as an operator
   // (valid until the next call). First calls Form::linearize_at(x) on every form: x is the
   // point the next search direction starts from.
-  const LinearOperator& hessian(const Eigen::VectorXd& x);
+  // exact = true: every form's true Hessian (Form::add_exact_hessian), which may be indefinite.
+  const LinearOperator& hessian(const Eigen::VectorXd& x, bool exact = false);
   bool is_valid(const Eigen::VectorXd& x) const;
   // Form::refresh on every form; true if any energy changed.
   bool refresh(const Eigen::VectorXd& x);

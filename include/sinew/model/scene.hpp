@@ -91,6 +91,7 @@ struct SolverSpec {
   NewtonSettings newton;
   LinearSolverSettings linear;
   Projection projection = Projection::Clamp;
+  bool predictor = true;  // quasistatic: start each load step from the extrapolated last increment
 };
 
 struct OutputSpec {

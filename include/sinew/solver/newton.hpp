@@ -34,7 +34,15 @@ struct NewtonSettings {
   bool eisenstat_walker = false;     // adaptive linear tolerance (forcing term, choice 2)
   double armijo = 1e-4;            // LineSearchSettings::armijo
   int max_line_search_steps = 40;  // LineSearchSettings::max_steps
+  // Quadratic tail: once a projected Newton step is taken in full and reduces the residual, the
+  // next iterations try the true Hessian (Problem::hessian(x, true)) and keep it while it is
+  // positive definite (the linear solve succeeds without regularisation), gives a descent
+  // direction and a full step; otherwise that iteration falls back to the projected Hessian, and
+  // after kMaxExactFallbacks fallbacks the solve stays projected. Far from equilibrium the
+  // projection keeps Newton robust; near it the true Hessian converges quadratically.
+  bool exact_tail = true;
 };
+inline constexpr int kMaxExactFallbacks = 4;
 
 struct NewtonIterate {
   int iteration = 0;
@@ -55,6 +63,9 @@ struct NewtonReport {
   double energy = 0.0;
   double assembly_seconds = 0.0;
   double solve_seconds = 0.0;
+  int exact_iterations = 0;  // iterations whose direction came from the true Hessian (exact_tail)
+  int exact_fallbacks = 0;    // true-Hessian solves that failed (the iteration solved again, projected)
+  int exact_short_steps = 0;  // true-Hessian steps the line search had to shorten
   std::string failure;  // why it stopped without converging
   // The absolute tolerance is below what double precision can resolve for this problem (under
   // 1e-15 x the largest force of a form): no number of iterations or smaller steps would meet it.
@@ -67,8 +78,11 @@ std::string describe_convergence_test(const NewtonSettings& settings);
 // The dimensionless residual residual / force_scale (the residual itself if no scale is known).
 double convergence_measure(const NewtonReport& report);
 
+// `origin` (optional): where the step test measures the displacement of the solve from when x
+// does not start there, e.g. a load step's start when x comes from a predictor.
 NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& linear,
                           const NewtonSettings& settings,
-                          const std::function<void(const NewtonIterate&)>& progress = {});
+                          const std::function<void(const NewtonIterate&)>& progress = {},
+                          const Eigen::VectorXd* origin = nullptr);
 
 }  // namespace sinew

@@ -15,6 +15,10 @@ namespace sinew {
 struct SolverContext {
   std::shared_ptr<const Discretization> discretization;  // null when unknown
   std::span<const char> fixed;  // one flag per DOF (empty: none known); valid during the solve
+  // The matrix is a true Hessian that may be indefinite: a solver reports failure (converged =
+  // false) instead of regularising it (CHOLMOD's diagonal shift) - the caller falls back to a
+  // projected one.
+  bool may_be_indefinite = false;
 
   // The mesh's lattice grid, or nullptr (no discretisation, or not a lattice).
   const LatticeStructure* lattice() const {
