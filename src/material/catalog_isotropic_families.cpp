@@ -123,6 +123,13 @@ void register_isotropic_families(std::vector<MaterialInfo>& out) {
                      throw Error(fmt::format("D1 must be finite and nonzero (D1 = 2 / bulk modulus), got {}", D1),
                                  "parameter 'D1'");
                    return std::make_unique<NeoHookeanDecoupled>(v(p, "C10"), D1);
+                 },
+                 // mu_Lame = 2 C10, K = lambda_Lame + 2/3 mu_Lame = 2 / D1.
+                 [](const MaterialParameters& p, const Lame& target) {
+                   MaterialParameters result = p;
+                   result.values["C10"] = 0.5 * target.mu;
+                   result.values["D1"] = 2.0 / (target.lambda + 2.0 / 3.0 * target.mu);
+                   return result;
                  }});
 
   out.push_back({"sts", "STS material", "paper 002 Table 1 (Pai et al. 2018)",
