@@ -129,8 +129,19 @@ void check_off(std::string_view text, const std::string& source) {
   Lines in(text, source, '#');
   std::vector<std::string_view> t;
   if (!in.next(t)) in.fail_at_end("no OFF header");
-  if (t[0] != "OFF") return;  // COFF, NOFF, 4OFF...: left to CGAL
+  // Only headers whose rows this check understands go on to CGAL: leaving the others to CGAL
+  // unchecked let a fuzzed header ("OFF\x02...") drive a 43 GB allocation.
+  static const std::string_view kHeaders[] = {"OFF", "COFF", "NOFF", "CNOFF", "STOFF", "STCOFF", "STNOFF", "STCNOFF"};
+  if (std::find(std::begin(kHeaders), std::end(kHeaders), t[0]) == std::end(kHeaders)) {
+    std::string shown(t[0].substr(0, 20));
+    for (char& c : shown)
+      if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+    in.fail(fmt::format("unsupported OFF header '{}' (Sinew reads ASCII OFF, COFF, NOFF, CNOFF and their ST variants; "
+                        "not binary, 4D or n-dimensional OFF)",
+                        shown));
+  }
   t.erase(t.begin());  // "OFF nv nf ne" on one line is allowed
+  if (!t.empty() && t[0] == "BINARY") in.fail("binary OFF is not supported; write ASCII OFF");
   if (t.empty() && !in.next(t)) in.fail_at_end("missing the vertex, face and edge counts");
   if (t.size() < 2) in.fail("expected the vertex and face counts");
   const long long nv = in.index(t[0], 0, 1LL << 31, "the vertex count");
