@@ -340,10 +340,15 @@ void check_ascii_ply(std::string_view text, const std::string& source) {
     bool list = false;
   };
   std::vector<Element> elements;
+  bool have_format = false;
   while (true) {
     if (!in.next(t)) in.fail_at_end("no 'end_header'");
     if (t[0] == "end_header") break;
     if (t[0] == "format" && (t.size() < 2 || t[1] != "ascii")) return check_binary_ply(text, source);
+    if (t[0] == "format") have_format = true;
+    // CGAL's reader takes both of these on trust (a property with no element was undefined
+    // behaviour inside it), so the header is refused here.
+    if (t[0] == "property" && elements.empty()) in.fail("a property before any element");
     if (t[0] == "element") {
       if (t.size() < 3) in.fail("'element' needs a name and a count");
       elements.push_back({std::string(t[1]), in.index(t[2], 0, 1LL << 31, "an element count")});
@@ -355,6 +360,7 @@ void check_ascii_ply(std::string_view text, const std::string& source) {
       }
     }
   }
+  if (!have_format) in.fail("no 'format' line before 'end_header'");
   long long nv = 0;
   for (const Element& e : elements) {
     if (e.name == "vertex") nv = e.count;
