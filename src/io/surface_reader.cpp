@@ -79,6 +79,8 @@ class Lines {
     return false;
   }
   int line() const { return line_; }
+  // Byte offset of the next line's start.
+  std::size_t offset() const { return std::min(pos_, text_.size()); }
   [[noreturn]] void fail(const std::string& message) const {
     throw Error(message, fmt::format("{}:{}", source_, line_));
   }
@@ -217,11 +219,6 @@ bool is_ascii_stl(const std::string& bytes) {
 // name the byte offset. Property types: [u]char/[u]int8, [u]short/[u]int16, [u]int/[u]int32,
 // float/float32, double/float64.
 void check_binary_ply(std::string_view text, const std::string& source) {
-  const std::size_t end_header = text.find("end_header");
-  if (end_header == std::string_view::npos) throw Error("no 'end_header'", source);
-  std::size_t pos = text.find('\n', end_header);
-  if (pos == std::string_view::npos) throw Error("file ends after 'end_header'", source);
-  ++pos;
   const auto at = [&](std::size_t offset) { return fmt::format("{}: byte {}", source, offset); };
 
   struct Type {
@@ -250,9 +247,17 @@ void check_binary_ply(std::string_view text, const std::string& source) {
   };
   std::vector<Element> elements;
   bool big_endian = false;
-  Lines header(text.substr(0, end_header), source, '\0');
+  // Line by line, as CGAL reads the header: the data starts after the line "end_header" (a
+  // search for the text "end_header" also matched it inside another line).
+  Lines header(text, source, '\0');
   std::vector<std::string_view> t;
-  while (header.next(t)) {
+  std::size_t pos = 0;
+  while (true) {
+    if (!header.next(t)) header.fail_at_end("no 'end_header'");
+    if (t[0] == "end_header") {
+      pos = header.offset();
+      break;
+    }
     if (t[0] == "format") {
       if (t.size() < 2 || (t[1] != "binary_little_endian" && t[1] != "binary_big_endian"))
         header.fail(fmt::format("unknown PLY format '{}'", t.size() < 2 ? "" : t[1]));
