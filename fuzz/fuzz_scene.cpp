@@ -3,7 +3,7 @@
 // none, so those paths end in "not found" errors; building the mesh is left out because a
 // valid scene may ask for up to 50 million cells.
 #include "support.hpp"
-#include "sinew/scene/scene.hpp"
+#include "sinew/model/scene.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = sinew::fuzz::write_input(data, size, "scene.json");

@@ -12,11 +12,11 @@
 #include <fmt/format.h>
 #include <filesystem>
 
-#include "sinew/fem/discretization.hpp"
-#include "sinew/fem/elastic_form.hpp"
+#include "sinew/element/discretization.hpp"
+#include "sinew/forms/elastic_form.hpp"
 #include "sinew/material/spec.hpp"
 #include "sinew/mesh/lattice.hpp"
-#include "sinew/scene/experiments.hpp"
+#include "experiments/paper000_experiments.hpp"
 
 namespace sinew {
 namespace {
@@ -44,8 +44,8 @@ void expect_same_scene(const Scene& file, const Scene& built) {
   EXPECT_EQ(a.elements, b.elements);
   EXPECT_LT((a.vertices - b.vertices).cwiseAbs().maxCoeff(), 1e-12);
   std::vector<KinematicCondition> ka, kb;
-  for (const auto& c : file.boundary) ka.push_back({select_vertices(a.vertices, c.select, c.name), c.motion});
-  for (const auto& c : built.boundary) kb.push_back({select_vertices(b.vertices, c.select, c.name), c.motion});
+  for (const auto& c : file.boundary) ka.push_back({select_vertices(a.vertices, c.select, c.name), c.motion, c.name});
+  for (const auto& c : built.boundary) kb.push_back({select_vertices(b.vertices, c.select, c.name), c.motion, c.name});
   Eigen::VectorXd xa = a.rest_positions(), xb = b.rest_positions();
   std::vector<char> fa(xa.size(), 0), fb(xb.size(), 0);
   apply_kinematics(ka, a.vertices, file.frames, xa, fa);

@@ -13,8 +13,8 @@
 #include "sinew/io/mesh_reader.hpp"
 #include "sinew/io/surface_reader.hpp"
 #include "sinew/material/expression.hpp"
-#include "sinew/rig/rig_reader.hpp"
-#include "sinew/scene/scene.hpp"
+#include "sinew/model/rig_reader.hpp"
+#include "sinew/model/scene.hpp"
 
 namespace sinew {
 namespace {

@@ -11,16 +11,16 @@
 #include <string>
 
 #include "io_test_support.hpp"
-#include "sinew/fem/kinematics.hpp"
+#include "sinew/motion/prescribed_motion.hpp"
 #include "sinew/io/mesh_reader.hpp"
 #include "sinew/io/surface_reader.hpp"
 #include "sinew/mesh/inside_test.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/mesh/tetrahedralize_surface.hpp"
 #include "sinew/mesh/voxelize.hpp"
-#include "sinew/rig/rig_reader.hpp"
-#include "sinew/scene/json_reader.hpp"
-#include "sinew/scene/scene.hpp"
+#include "sinew/model/rig_reader.hpp"
+#include "sinew/model/json_reader.hpp"
+#include "sinew/model/scene.hpp"
 
 namespace sinew {
 namespace {
@@ -160,8 +160,8 @@ TEST(HostileInput, BinaryPlyCountsAreCheckedBeforeCgalReadsThem) {
   // A face index past the vertices, and a NaN coordinate, are named with their byte offset.
   std::string face = std::string(1, '\3');
   for (int v : {0, 1, 7}) face.append(reinterpret_cast<const char*>(&v), 4);
-  std::string bad = header;
-  bad.replace(bad.find("2147483647"), 10, "1");
+  const size_t count_at = header.find("2147483647");
+  const std::string bad = header.substr(0, count_at) + "1" + header.substr(count_at + 10);
   expect_contains(error_message([&] { read_triangle_surface(dir.write("index.ply", bad + body + face)); }),
                   {"index.ply: byte", "face 0 refers to vertex 7"});
   std::string nan_body = body;

@@ -2,31 +2,17 @@
 // preconditioners) against CHOLMOD on a symmetric positive definite block system.
 #include <gtest/gtest.h>
 
+#include "spd_test_support.hpp"
+
 #include <random>
 
-#include "sinew/solver/linear_operator.hpp"
+#include "sinew/linalg/linear_operator.hpp"
 #include "sinew/solver/linear_solver.hpp"
 
 namespace sinew {
 namespace {
 
-// A random SPD matrix with 3x3 vertex blocks coupling each vertex to a few others, built as
-// B^T B + shift I, the shape (not the values) of an assembled FEM Hessian.
-Eigen::SparseMatrix<double> random_spd(int vertices, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::uniform_int_distribution<int> pick(0, vertices - 1);
-  std::vector<Eigen::Triplet<double>> t;
-  const int n = 3 * vertices;
-  for (int r = 0; r < n; ++r)
-    for (int k = 0; k < 4; ++k) t.emplace_back(r, 3 * pick(rng) + k % 3, u(rng));
-  Eigen::SparseMatrix<double> B(n, n);
-  B.setFromTriplets(t.begin(), t.end());
-  Eigen::SparseMatrix<double> I(n, n);
-  I.setIdentity();
-  Eigen::SparseMatrix<double> A = Eigen::SparseMatrix<double>(B.transpose()) * B + 0.1 * I;
-  return A;
-}
+using test::random_spd;
 
 TEST(LinearSolver, ParallelProductMatchesEigen) {
   for (unsigned seed : {1u, 2u, 3u}) {
@@ -53,7 +39,7 @@ TEST(LinearSolver, PcgMatchesCholmodWithEitherPreconditioner) {
   LinearSolverSettings s;
   s.kind = "cholmod";
   ASSERT_TRUE(make_linear_solver(s)->solve(op, b, direct, 0.0).converged);
-  for (Preconditioner p : {Preconditioner::Jacobi, Preconditioner::BlockJacobi3}) {
+  for (const char* p : {"jacobi", "block_jacobi"}) {
     s.kind = "pcg";
     s.preconditioner = p;
     auto pcg = make_linear_solver(s);

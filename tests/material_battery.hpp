@@ -24,9 +24,9 @@ inline void check_material_battery(const Material& m, const BatteryOptions& opti
   for (const auto& s : set) {
     SCOPED_TRACE(describe(s));
     // P and the Hessian against Richardson central differences.
-    EXPECT_LE(rel_error(m.pk1(s.F), fd_pk1(m, s.F)), 1e-6);
+    EXPECT_LE(rel_error(m.pk1(s.F), difference_pk1(m, s.F)), 1e-6);
     const Mat9 H = m.hessian(s.F);
-    EXPECT_LE(rel_error(H, fd_hessian(m, s.F)), 1e-6);
+    EXPECT_LE(rel_error(H, difference_hessian(m, s.F)), 1e-6);
 
     // Analytic eigensystem against the numeric one.
     const Eigensystem es = m.eigensystem(s.F);

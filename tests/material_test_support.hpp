@@ -1,7 +1,7 @@
 #pragma once
 // Shared oracles for material tests: random deformation gradients of every kind the
-// acceptance criteria name, Richardson-extrapolated central differences, and a numeric
-// 9x9 eigendecomposition (used only here, never in the library).
+// acceptance criteria name and a numeric 9x9 eigendecomposition (used only here, never in the
+// library). Finite differences come from the library's checker (material/derivative_check.hpp).
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sinew/core/types.hpp"
+#include "sinew/material/derivative_check.hpp"
 #include "sinew/material/material.hpp"
 
 namespace sinew::test {
@@ -71,56 +72,6 @@ inline std::vector<SampleF> sample_set(unsigned seed, int per_kind, bool allow_i
     for (int i = 0; i < per_kind; ++i) out.push_back(random_F(rng, k));
   }
   return out;
-}
-
-// Central difference with one Richardson step: error O(h^4).
-template <class Fn>
-auto richardson(Fn&& diff, double h) {
-  auto d1 = diff(h);
-  auto d2 = diff(0.5 * h);
-  return ((4.0 * d2 - d1) / 3.0).eval();
-}
-
-// The step stays well inside the smooth region around F: below the smallest singular value
-// and, for inverted F, below the distance to the set sigma_i = -sigma_j where the polar
-// rotation R = U V^T (and every energy built on it) has a Hessian singularity.
-inline double fd_step(const Mat3& F) {
-  const Vec3 s = signed_svd(F).sigma;
-  double reach = std::min(1.0, s.cwiseAbs().minCoeff());
-  for (int i = 0; i < 3; ++i)
-    for (int j = i + 1; j < 3; ++j) reach = std::min(reach, std::abs(s(i) + s(j)));
-  return 1e-3 * reach;
-}
-
-inline Mat3 fd_pk1(const Material& m, const Mat3& F) {
-  const double h = fd_step(F);
-  Mat3 P;
-  for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r) {
-      auto diff = [&](double hh) {
-        Mat3 Fp = F, Fm = F;
-        Fp(r, c) += hh;
-        Fm(r, c) -= hh;
-        return Eigen::Matrix<double, 1, 1>((m.psi(Fp) - m.psi(Fm)) / (2.0 * hh));
-      };
-      P(r, c) = richardson(diff, h)(0);
-    }
-  return P;
-}
-
-inline Mat9 fd_hessian(const Material& m, const Mat3& F) {
-  const double h = fd_step(F);
-  Mat9 H;
-  for (int col = 0; col < 9; ++col) {
-    auto diff = [&](double hh) {
-      Mat3 Fp = F, Fm = F;
-      Fp(col % 3, col / 3) += hh;
-      Fm(col % 3, col / 3) -= hh;
-      return Vec9((vec(m.pk1(Fp)) - vec(m.pk1(Fm))) / (2.0 * hh));
-    };
-    H.col(col) = richardson(diff, h);
-  }
-  return H;
 }
 
 // ||A - B|| / max(||B||, floor): relative, but absolute near zero (moduli are O(1) in the

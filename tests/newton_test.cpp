@@ -3,9 +3,9 @@
 
 #include <numbers>
 
-#include "sinew/fem/elastic_form.hpp"
-#include "sinew/fem/kinematics.hpp"
-#include "sinew/material/corotational.hpp"
+#include "sinew/forms/elastic_form.hpp"
+#include "sinew/motion/prescribed_motion.hpp"
+#include "sinew/material/families/corotational.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/mesh/selection.hpp"
 #include "sinew/solver/newton.hpp"
@@ -27,9 +27,9 @@ TwistOutcome run_twist(const std::string& solver_kind) {
   Problem problem(mesh.num_vertices());
   problem.add_form(form);
   std::vector<KinematicCondition> bcs;
-  bcs.push_back({select_vertices(mesh.vertices, PlaneSelector{{0, 0, 0}, {0, 0, -1}}, "bottom"), Pinned{}});
+  bcs.push_back({select_vertices(mesh.vertices, PlaneSelector{{0, 0, 0}, {0, 0, -1}}, "bottom"), Pinned{}, "bottom"});
   bcs.push_back({select_vertices(mesh.vertices, PlaneSelector{{0, 0, 1}, {0, 0, 1}}, "top"),
-                 Rotation{{0.5, 0.5, 1.0}, {0, 0, 1}, std::numbers::pi / 2}});
+                 Rotation{{0.5, 0.5, 1.0}, {0, 0, 1}, std::numbers::pi / 2}, "top"});
   LinearSolverSettings ls;
   ls.kind = solver_kind;
   auto linear = make_linear_solver(ls);

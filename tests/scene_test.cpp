@@ -8,8 +8,8 @@
 #include <numbers>
 
 #include "io_test_support.hpp"
-#include "sinew/fem/discretization.hpp"
-#include "sinew/scene/scene.hpp"
+#include "sinew/element/discretization.hpp"
+#include "sinew/model/scene.hpp"
 
 namespace sinew {
 namespace {
@@ -59,7 +59,7 @@ TEST(Scene, MinimalSceneGetsTheDocumentedDefaults) {
   EXPECT_EQ(s.solver.newton.relative_tolerance, 0.0);
   EXPECT_EQ(s.solver.newton.max_iterations, 100);
   EXPECT_EQ(s.solver.linear.kind, "cholmod");
-  EXPECT_EQ(s.solver.linear.preconditioner, Preconditioner::BlockJacobi3);
+  EXPECT_EQ(s.solver.linear.preconditioner, "block_jacobi");
   EXPECT_FALSE(s.solver.newton.eisenstat_walker);
   EXPECT_EQ(s.solver.projection, Projection::Clamp);
   EXPECT_EQ(s.description, "");
@@ -124,7 +124,7 @@ TEST(Scene, EveryFieldIsRead) {
   EXPECT_EQ(s.solver.newton.max_iterations, 7);
   EXPECT_EQ(s.solver.newton.max_line_search_steps, 9);
   EXPECT_EQ(s.solver.linear.kind, "pcg");
-  EXPECT_EQ(s.solver.linear.preconditioner, Preconditioner::Jacobi);
+  EXPECT_EQ(s.solver.linear.preconditioner, "jacobi");
   EXPECT_EQ(s.solver.newton.linear_tolerance, 1e-5);
   EXPECT_TRUE(s.solver.newton.eisenstat_walker);
   EXPECT_EQ(s.solver.linear.max_iterations, 123);

@@ -10,8 +10,8 @@
 #include "sinew/core/error.hpp"
 #include "sinew/material/catalog.hpp"
 #include "sinew/material/lame.hpp"
-#include "sinew/material/table1.hpp"
-#include "sinew/material/table1/divided_difference.hpp"
+#include "sinew/material/families.hpp"
+#include "sinew/material/divided_difference.hpp"
 
 namespace sinew {
 namespace {
@@ -39,9 +39,9 @@ void expect_derivatives_match(const Material& m, const std::vector<test::SampleF
   for (const auto& s : set) {
     const Mat9 H = m.hessian(s.F);
     const double scale = std::max(1.0, H.norm());
-    EXPECT_LE(rel_error(m.pk1(s.F), test::fd_pk1(m, s.F), 1e-5 * scale), 1e-6)
+    EXPECT_LE(rel_error(m.pk1(s.F), difference_pk1(m, s.F), 1e-5 * scale), 1e-6)
         << label << " " << test::describe(s);
-    EXPECT_LE(rel_error(H, test::fd_hessian(m, s.F)), 1e-6) << label << " " << test::describe(s);
+    EXPECT_LE(rel_error(H, difference_hessian(m, s.F)), 1e-6) << label << " " << test::describe(s);
     Vec9 analytic = m.eigensystem(s.F).values;
     std::sort(analytic.data(), analytic.data() + 9);
     EXPECT_LE((analytic - test::numeric_eigenvalues(H)).norm() / scale, 1e-8)

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cli.hpp"
+#include "cmd_check.hpp"
 #include "cmd_run.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/version.hpp"
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
   std::vector<sinew::cli::Command> commands;
   int exit_code = 0;  // a command may report a non-error failure (e.g. 3: not converged)
   commands.push_back(sinew::cli::add_run_command(app, exit_code));
+  commands.push_back(sinew::cli::add_check_command(app, exit_code));
   commands.push_back(sinew::cli::add_materials_command(app));
   CLI::App* material = app.add_subcommand("material", "Evaluate one material: eval, curve");
   material->require_subcommand(1);

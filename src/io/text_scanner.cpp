@@ -127,8 +127,11 @@ std::int64_t TextScanner::next_count(std::string_view what, std::int64_t tokens_
 void TextScanner::check_count_fits(std::string_view what, std::int64_t count, std::int64_t tokens_each) const {
   const std::int64_t left = static_cast<std::int64_t>(text_.size() - std::min(pos_, text_.size()));
   const std::int64_t most = (left + 1) / 2;  // a token plus its separator, the last one unterminated
-  // count <= most / tokens_each, without forming the product (which could overflow)
-  if (count > 0 && tokens_each > 0 && count > most / tokens_each)
+  // count <= most / tokens_each, without forming the product (which could overflow). Only a
+  // count that would size a large allocation is refused here; a smaller one is left to the
+  // parser, which names the exact place where a truncated file ends.
+  constexpr std::int64_t kSmall = 1 << 20;  // numbers (8 MB of doubles)
+  if (count > 0 && tokens_each > 0 && count > most / tokens_each && count > kSmall / tokens_each)
     fail(fmt::format("{} {} cannot be right: that many need at least {:.0f} numbers, and the {} bytes left in the "
                      "file hold at most {}",
                      what, count, static_cast<double>(count) * static_cast<double>(tokens_each), left, most));

@@ -23,6 +23,10 @@
 namespace sinew {
 namespace {
 
+// Arrays this small are parsed whatever their declared size (the parser then names the exact
+// problem); a larger declared size the data cannot hold is refused before anything is sized by it.
+constexpr std::size_t kSmallArray = std::size_t(1) << 20;
+
 struct XmlElement {
   std::string name;
   std::vector<std::pair<std::string, std::string>> attributes;
@@ -282,7 +286,7 @@ struct VtuFile {
     if (*format == "ascii") {
       // Each value takes at least two characters with its separator: a count the text cannot
       // hold is an error here, before anything is sized by it.
-      if (expected > (data.size() + 1) / 2)
+      if (expected > (data.size() + 1) / 2 && expected > kSmallArray)
         fail(fmt::format("needs {} values but its text ({} bytes) cannot hold that many", expected, data.size()));
       values.reserve(expected);
       std::size_t i = 0;
@@ -301,7 +305,8 @@ struct VtuFile {
         i = end;
       }
     } else if (*format == "binary") {
-      if (expected > data.size())  // base64 holds 3 bytes in 4 characters, and a value is >= 1 byte
+      // base64 holds 3 bytes in 4 characters, and a value is >= 1 byte
+      if (expected > data.size() && expected > kSmallArray)
         fail(fmt::format("needs {} values but its data ({} characters) cannot hold that many", expected, data.size()));
       if (!compressor.empty()) {
         fail(fmt::format("compressed data ({}) is not supported; write uncompressed binary or ascii", compressor));

@@ -72,15 +72,27 @@ VolumeMesh occupancy_lattice(const Eigen::AlignedBox3d& bounds, const Eigen::Vec
   VolumeMesh mesh;
   mesh.kind = ElementKind::Hex8;
   mesh.vertices.resize(next, 3);
+  LatticeStructure grid;
+  grid.cells = cells;
+  grid.origin = bounds.min();
+  grid.spacing = h;
+  grid.vertex_point.resize(next, 3);
+  grid.vertex_copy = Eigen::VectorXi::Zero(next);
   for (int k = 0; k < nv(2); ++k)
     for (int j = 0; j < nv(1); ++j)
       for (int i = 0; i < nv(0); ++i) {
         const Eigen::Index r = remap[grid_index(i, j, k)];
-        if (r >= 0) mesh.vertices.row(r) = (bounds.min() + h.cwiseProduct(Eigen::Vector3d(i, j, k))).transpose();
+        if (r < 0) continue;
+        mesh.vertices.row(r) = (bounds.min() + h.cwiseProduct(Eigen::Vector3d(i, j, k))).transpose();
+        grid.vertex_point.row(r) = Eigen::RowVector3i(i, j, k);
       }
   mesh.elements.resize(static_cast<Eigen::Index>(kept.size()), 8);
-  for (size_t e = 0; e < kept.size(); ++e)
+  grid.element_cell.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (size_t e = 0; e < kept.size(); ++e) {
     for (int a = 0; a < 8; ++a) mesh.elements(e, a) = static_cast<int>(remap[kept[e][a]]);
+    grid.element_cell.row(e) = grid.vertex_point.row(mesh.elements(e, 0));
+  }
+  mesh.lattice = std::move(grid);
   return mesh;
 }
 

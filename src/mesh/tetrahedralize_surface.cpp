@@ -104,7 +104,9 @@ VolumeMesh tetrahedralize_surface(const TriangleSurface& input, double max_edge)
     throw Error(fmt::format("Gmsh needs a 2-manifold surface; this one has {} edges shared by more than two faces",
                             topology.nonmanifold_edges),
                 where);
-  // Gmsh keeps the boundary triangles and sizes the inside from them, so long ones are split first.
+  // Gmsh keeps the boundary triangles and sizes the inside from them, so edges longer than
+  // max_edge are split first, in their own plane: the boundary is then that split surface, on
+  // which every input vertex (and so an embedded render surface) still lies exactly.
   const TriangleSurface surface = bisect_long_edges(input, max_edge);
   std::lock_guard lock(gmsh_mutex);
   VolumeMesh mesh;

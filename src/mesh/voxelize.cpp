@@ -96,6 +96,7 @@ VolumeMesh voxelize_surface(const InsideTest& shape, const VoxelizeOptions& opti
   };
   std::vector<int> first_copy(static_cast<size_t>(nv.prod()), -1);
   std::vector<Eigen::Vector3d> positions;
+  std::vector<std::array<int, 4>> points;  // grid point and copy of each vertex (the lattice structure)
   std::array<int, 8> group;
   for (int k = 0; k < nv(2); ++k)
     for (int j = 0; j < nv(1); ++j)
@@ -103,14 +104,19 @@ VolumeMesh voxelize_surface(const InsideTest& shape, const VoxelizeOptions& opti
         const int groups = groups_at(i, j, k, group);
         if (groups == 0) continue;
         first_copy[vertex_id(i, j, k)] = static_cast<int>(positions.size());
-        for (int n = 0; n < groups; ++n) positions.push_back(origin + h * Eigen::Vector3d(i, j, k));
+        for (int n = 0; n < groups; ++n) {
+          positions.push_back(origin + h * Eigen::Vector3d(i, j, k));
+          points.push_back({i, j, k, n});
+        }
       }
 
   std::vector<std::array<int, 8>> elements;
+  std::vector<Eigen::Vector3i> element_cells;
   for (int k = 0; k < cells(2); ++k)
     for (int j = 0; j < cells(1); ++j)
       for (int i = 0; i < cells(0); ++i) {
         if (!kept[cell_id(i, j, k)]) continue;
+        element_cells.emplace_back(i, j, k);
         std::array<int, 8> e;
         for (int a = 0; a < 8; ++a) {
           const auto& c = kCorner[a];
@@ -129,6 +135,21 @@ VolumeMesh voxelize_surface(const InsideTest& shape, const VoxelizeOptions& opti
   mesh.elements.resize(static_cast<Eigen::Index>(elements.size()), 8);
   for (size_t e = 0; e < elements.size(); ++e)
     for (int a = 0; a < 8; ++a) mesh.elements(static_cast<Eigen::Index>(e), a) = elements[e][a];
+  LatticeStructure grid;
+  grid.cells = cells;
+  grid.origin = origin;
+  grid.spacing = Eigen::Vector3d::Constant(h);
+  grid.non_manifold = options.non_manifold;
+  grid.vertex_point.resize(mesh.num_vertices(), 3);
+  grid.vertex_copy.resize(mesh.num_vertices());
+  for (size_t v = 0; v < points.size(); ++v) {
+    const auto r = static_cast<Eigen::Index>(v);
+    grid.vertex_point.row(r) = Eigen::RowVector3i(points[v][0], points[v][1], points[v][2]);
+    grid.vertex_copy(r) = points[v][3];
+  }
+  grid.element_cell.resize(mesh.num_elements(), 3);
+  for (size_t e = 0; e < element_cells.size(); ++e) grid.element_cell.row(static_cast<Eigen::Index>(e)) = element_cells[e].transpose();
+  mesh.lattice = std::move(grid);
   return mesh;
 }
 

@@ -12,10 +12,11 @@ namespace {
 
 class CholmodSolver final : public LinearSolver {
  public:
+  using LinearSolver::solve;
   std::string name() const override { return "cholmod"; }
 
-  LinearSolveReport solve(const LinearOperator& op, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                          double) override {
+  LinearSolveReport solve(const LinearOperator& op, const Eigen::VectorXd& b, Eigen::VectorXd& x, double,
+                          const SolverContext&) override {
     if (!op.matrix()) throw Error("CHOLMOD needs an assembled matrix; use pcg with a matrix-free operator", "solver.linear");
     const Eigen::SparseMatrix<double>& A = *op.matrix();
     const SerialOpenMpScope serial_cholmod;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "sinew/solver/line_search.hpp"
+
 namespace sinew {
 namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -29,6 +31,12 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
   report.initial_residual = residual;
   double eta = s.linear_tolerance, previous_residual = residual;
   Eigen::VectorXd d, trial;
+  const LineSearchObjective objective{[&](const Eigen::VectorXd& y) { return problem.value(y); },
+                                      [&](const Eigen::VectorXd& y) { return problem.gradient(y); }};
+  const LineSearchSettings line_search{s.armijo, s.max_line_search_steps};
+  // What the linear solver and its preconditioner may use besides the matrix; the fixed mask is
+  // the problem's own (set before the solve, unchanged during it).
+  const SolverContext context{problem.discretization(), problem.fixed()};
   for (int it = 0;; ++it) {
     report.iterations = it;
     report.residual = residual;
@@ -67,7 +75,7 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
       eta = std::clamp(std::max(0.9 * ratio * ratio, 0.9 * eta * eta), 1e-8, 0.5);
     }
     t0 = std::chrono::steady_clock::now();
-    const LinearSolveReport lin = linear.solve(H, -g, d, eta);
+    const LinearSolveReport lin = linear.solve(H, -g, d, eta, context);
     report.solve_seconds += seconds_since(t0);
     report.linear_iterations += lin.iterations;
 
@@ -78,40 +86,20 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
       slope = -g.squaredNorm();
     }
     t0 = std::chrono::steady_clock::now();
-    double alpha = 1.0, trial_energy = 0.0;
-    bool accepted = false;
-    Eigen::VectorXd trial_g;
-    for (int ls = 0; ls < s.max_line_search_steps; ++ls, alpha *= 0.5) {
-      trial = x + alpha * d;
-      trial_energy = problem.value(trial);
-      if (!std::isfinite(trial_energy)) continue;
-      if (trial_energy <= energy + s.armijo * alpha * slope) {
-        accepted = true;
-        break;
-      }
-      // Near convergence the energy decrease drowns in rounding: accept a step that lowers
-      // the residual instead.
-      if (std::abs(trial_energy - energy) <= 1e-12 * std::max(1.0, std::abs(energy))) {
-        trial_g = problem.gradient(trial);
-        if (trial_g.norm() < residual) {
-          accepted = true;
-          break;
-        }
-      }
-    }
+    const LineSearchResult step = backtracking_line_search(objective, x, d, energy, slope, residual, line_search, trial);
     report.assembly_seconds += seconds_since(t0);
-    if (!accepted) {
+    if (!step.accepted) {
       report.failure = fmt::format("line search failed at Newton iteration {} (residual {:.3e})", it, residual);
       return report;
     }
     x = trial;
-    energy = trial_energy;
+    energy = step.energy;
     previous_residual = residual;
     t0 = std::chrono::steady_clock::now();
     g = problem.gradient(x);
     report.assembly_seconds += seconds_since(t0);
     residual = g.norm();
-    if (progress) progress({it + 1, residual, energy, alpha, lin.iterations});
+    if (progress) progress({it + 1, residual, energy, step.step, lin.iterations});
   }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Regular hexahedral lattices: a box, or the cells of a grid that lie inside a shape given
-// by a signed distance (negative inside) or a voxel occupancy predicate.
+// by a signed distance (negative inside) or a voxel occupancy predicate. Each keeps its grid
+// (VolumeMesh::lattice); splitting into tetrahedra drops it.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <functional>

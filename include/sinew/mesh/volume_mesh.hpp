@@ -1,7 +1,10 @@
 #pragma once
 // A volume mesh of one element kind: rest positions and connectivity, plain Eigen types.
 #include <Eigen/Core>
+#include <optional>
 #include <string>
+
+#include "sinew/mesh/lattice_structure.hpp"
 
 namespace sinew {
 
@@ -16,13 +19,17 @@ struct VolumeMesh {
   ElementKind kind = ElementKind::Hex8;
   Eigen::MatrixX3d vertices;  // rest positions, one row per vertex
   Eigen::MatrixXi elements;   // one row per element, nodes_per_element(kind) columns
+  // The grid of a hexahedral lattice (mesh/lattice.hpp, mesh/voxelize.hpp), for solvers that
+  // use it; absent for meshes read from files and for lattices split into tetrahedra.
+  std::optional<LatticeStructure> lattice;
 
   Eigen::Index num_vertices() const { return vertices.rows(); }
   Eigen::Index num_elements() const { return elements.rows(); }
 
-  // Rejects out-of-range indices, repeated nodes, non-finite coordinates and inverted or
-  // degenerate elements (rest Jacobian at every quadrature point must be positive); the
-  // sinew::Error names `source` and the first bad element.
+  // Rejects out-of-range indices, repeated nodes, non-finite coordinates and a lattice structure
+  // that does not match the mesh; the sinew::Error
+  // names `source` and the first bad element. validate_mesh (element/mesh_validation.hpp) adds
+  // the element shapes (inverted or degenerate elements), which needs the quadrature rules.
   void validate(const std::string& source) const;
 
   // Rest positions flattened as x[3 v + i].

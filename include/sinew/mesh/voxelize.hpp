@@ -28,7 +28,8 @@ struct VoxelizeOptions {
 };
 
 // The lattice starts at the surface's bounding-box minimum (or on options.grid_origin's grid); a sinew::Error says why when the
-// options are invalid, the lattice would be too large or no cell is kept.
+// options are invalid, the lattice would be too large or no cell is kept. The mesh keeps its grid
+// (VolumeMesh::lattice), with the copies of non-manifold vertices numbered.
 VolumeMesh voxelize_surface(const InsideTest& shape, const VoxelizeOptions& options);
 
 // The lattice's cell size for `options` over `bounds` (shared with the scene reader).

@@ -5,7 +5,8 @@
 #include <memory>
 #include <string>
 
-#include "sinew/solver/linear_operator.hpp"
+#include "sinew/linalg/linear_operator.hpp"
+#include "sinew/solver/solver_context.hpp"
 
 namespace sinew {
 
@@ -21,16 +22,20 @@ class LinearSolver {
   virtual std::string name() const = 0;
   // Solves A x = b for symmetric positive (semi-)definite A. The sparsity pattern of A may be
   // reused between calls; the symbolic analysis is redone only when it changes. `tolerance`
-  // is the relative residual target for iterative solvers (ignored by direct ones).
-  virtual LinearSolveReport solve(const LinearOperator& A, const Eigen::VectorXd& b,
-                                  Eigen::VectorXd& x, double tolerance) = 0;
+  // is the relative residual target for iterative solvers (ignored by direct ones). The
+  // context (discretisation, lattice, fixed DOFs) is passed on to the preconditioner.
+  virtual LinearSolveReport solve(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                  double tolerance, const SolverContext& context) = 0;
+  // The same for a bare system (empty context).
+  LinearSolveReport solve(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance) {
+    return solve(A, b, x, tolerance, SolverContext{});
+  }
 };
-
-enum class Preconditioner { Jacobi, BlockJacobi3 };
 
 struct LinearSolverSettings {
   std::string kind = "cholmod";  // "cholmod" | "pcg"
-  Preconditioner preconditioner = Preconditioner::BlockJacobi3;
+  // pcg only: a name from the preconditioner registry (solver/preconditioner.hpp).
+  std::string preconditioner = "block_jacobi";
   int max_iterations = 10000;
 };
 

@@ -1,10 +1,12 @@
 #pragma once
-// Projected Newton on the total energy with a backtracking line search (paper 000 §6).
+// Projected Newton on the total energy with a backtracking line search (paper 000 §6,
+// solver/line_search.hpp). The linear solver gets a SolverContext with the problem's
+// discretisation (and lattice) and fixed-DOF mask.
 #include <functional>
 #include <string>
 
 #include "sinew/solver/linear_solver.hpp"
-#include "sinew/solver/problem.hpp"
+#include "sinew/assembly/problem.hpp"
 
 namespace sinew {
 
@@ -14,8 +16,8 @@ struct NewtonSettings {
   int max_iterations = 100;
   double linear_tolerance = 1e-4;    // relative residual for iterative linear solvers
   bool eisenstat_walker = false;     // adaptive linear tolerance (forcing term, choice 2)
-  double armijo = 1e-4;
-  int max_line_search_steps = 40;
+  double armijo = 1e-4;            // LineSearchSettings::armijo
+  int max_line_search_steps = 40;  // LineSearchSettings::max_steps
 };
 
 struct NewtonIterate {
