@@ -14,7 +14,9 @@
 #include "sinew/io/surface_reader.hpp"
 #include "sinew/material/expression.hpp"
 #include "sinew/model/rig_reader.hpp"
+#include "sinew/model/model.hpp"
 #include "sinew/model/scene.hpp"
+#include "sinew/run/checkpoint.hpp"
 
 namespace sinew {
 namespace {
@@ -36,6 +38,17 @@ Reader as(const std::string& name, std::function<void(const fs::path&)> read) {
     }
   };
 }
+
+// fuzz_checkpoint's scene, built once: the findings are its checkpoints, damaged.
+struct Resumable {
+  Resumable()
+      : scene(load_scene(test::data_path("checkpoint_scene/scene.json"))),
+        model(build_model(scene)),
+        fingerprint(fingerprint_run(scene)) {}
+  Scene scene;
+  Model model;
+  RunFingerprint fingerprint;
+};
 
 std::map<std::string, Reader> readers() {
   const auto mesh = [](const fs::path& p) { read_volume_mesh(p); };
@@ -63,6 +76,13 @@ std::map<std::string, Reader> readers() {
            EXPECT_NE(std::string(e.what()).find("input."), std::string::npos) << input << ": " << e.what();
          }
        }},
+      {"fuzz_checkpoint", as("checkpoint.json",
+                              [](const fs::path& p) {
+                                static Resumable r;
+                                const Checkpoint c = read_checkpoint(p.parent_path(), r.fingerprint, *r.model.integrator,
+                                                                     r.model.initial.x.size(), r.scene.frames);
+                                restore_integrator(*r.model.integrator, c, p.parent_path());
+                              })},
       {"fuzz_expression",
        [](const fs::path& input, const test::TempDir&) {
          try {

@@ -286,7 +286,7 @@ TEST(SceneConstraints, ResumeContinuesFromTheCheckpointToTheSameMotion) {
   std::ofstream(part.out_dir / "checkpoint.json") << R"({"scene_fingerprint": "x", "frame": 1})";
   expect_contains(error_message([&] { run_scene(load_scene(file), part); }), {"checkpoint.json", "constrained"});
   std::ofstream(part.out_dir / "checkpoint.json") << R"({"mode": "constrained", "frame": )";
-  expect_contains(error_message([&] { run_scene(load_scene(file), part); }), {"checkpoint.json", "corrupt"});
+  expect_contains(error_message([&] { run_scene(load_scene(file), part); }), {"checkpoint.json", "malformed JSON"});
 }
 
 TEST(SceneConstraints, SelfContactIsIntegratedNotIgnored) {

@@ -2,9 +2,7 @@
 
 #include <chrono>
 #include <fmt/format.h>
-#include <fstream>
 #include <regex>
-#include <sstream>
 
 #include "sinew/core/error.hpp"
 #include "sinew/io/atomic_file.hpp"
@@ -19,13 +17,6 @@ bool RunSummary::all_converged() const {
   for (const auto& f : frames)
     if (!f.converged) return false;
   return true;
-}
-
-std::string scene_fingerprint(const Scene& scene) {
-  std::ifstream in(scene.file, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return fmt::format("{:016x}", std::hash<std::string>{}(ss.str()));
 }
 
 // A fresh run replaces the files an earlier run left in the folder (only the names Sinew
@@ -105,17 +96,13 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   // ---- outputs and checkpoint
   const bool writing = !options.out_dir.empty();
   const std::filesystem::path& out = options.out_dir;
-  const std::string fingerprint = scene_fingerprint(scene);
+  const RunFingerprint fingerprint = writing ? fingerprint_run(scene) : RunFingerprint{};
   FrameOutput output(scene, model, writing ? out : std::filesystem::path());
   if (options.resume) {
-    Checkpoint c = read_checkpoint(out, fingerprint, integrator, state.x.size());
+    Checkpoint c = read_checkpoint(out, fingerprint, integrator, state.x.size(), frames);
+    restore_integrator(integrator, c, out);
     state.x = std::move(c.state.x);
     if (integrator.dynamic()) state.v = std::move(c.state.v);
-    try {
-      integrator.restore_state(c.integrator_state, c.frame);
-    } catch (const nlohmann::json::exception& e) {
-      throw Error(fmt::format("corrupt checkpoint: {}", e.what()), (out / "checkpoint.json").string());
-    }
     summary.frames = std::move(c.frames);
     output.set_pvd(std::move(c.pvd));
     first_frame = c.frame + 1;
