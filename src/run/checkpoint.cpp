@@ -70,6 +70,11 @@ RunFingerprint fingerprint_run(const Scene& scene) {
   return f;
 }
 
+bool has_checkpoint(const fs::path& out) {
+  std::error_code ec;
+  return fs::exists(out / "checkpoint.json", ec);
+}
+
 void write_checkpoint(const fs::path& out, const RunFingerprint& fingerprint, const Integrator& integrator,
                       const Checkpoint& c) {
   nlohmann::json frames = nlohmann::json::array();
@@ -93,8 +98,7 @@ Checkpoint read_checkpoint(const fs::path& out, const RunFingerprint& fingerprin
                            Eigen::Index dofs, int frames_requested) {
   const fs::path path = out / "checkpoint.json";
   const std::string file = path.string();
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error("no checkpoint to resume from (run without --resume first)", file);
+  if (!has_checkpoint(out)) throw Error("no checkpoint to resume from (run without --resume first)", file);
   // The scene reader's parser: nesting depth bounded, duplicate keys refused, errors with paths.
   const nlohmann::json j = read_json_file(path, "checkpoint");
   // Problems inside the checkpoint name it and the JSON path; a changed input names that file.

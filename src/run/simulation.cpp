@@ -2,10 +2,12 @@
 
 #include <chrono>
 #include <fmt/format.h>
+#include <optional>
 #include <regex>
 
 #include "sinew/core/error.hpp"
 #include "sinew/io/atomic_file.hpp"
+#include "sinew/io/folder_lock.hpp"
 #include "sinew/model/model.hpp"
 #include "sinew/run/checkpoint.hpp"
 #include "sinew/run/frame_output.hpp"
@@ -98,6 +100,16 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   const std::filesystem::path& out = options.out_dir;
   const RunFingerprint fingerprint = writing ? fingerprint_run(scene) : RunFingerprint{};
   FrameOutput output(scene, model, writing ? out : std::filesystem::path());
+  // The folder is this run's alone until it returns (a second run into it is refused, naming
+  // this one's pid); temporary files a killed write left there go first.
+  std::optional<FolderLock> lock;
+  if (writing) {
+    // --resume without a checkpoint fails before the folder is created (read_checkpoint says so).
+    if (options.resume && !has_checkpoint(out)) read_checkpoint(out, fingerprint, integrator, state.x.size(), frames);
+    ensure_directory(out);
+    lock.emplace(out);
+    remove_stale_temporary_files(out);
+  }
   if (options.resume) {
     Checkpoint c = read_checkpoint(out, fingerprint, integrator, state.x.size(), frames);
     restore_integrator(integrator, c, out);
@@ -109,7 +121,6 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   } else if (writing) {
     remove_previous_outputs(out);
   }
-  if (writing) ensure_directory(out);
   auto frame_time = [&](int frame) { return integrator.dynamic() ? frame * integrator.frame_duration() : double(frame); };
   if (first_frame == 1) output.write(0, frame_time(0), state);
 

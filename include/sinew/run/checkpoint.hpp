@@ -40,6 +40,9 @@ struct Checkpoint {
   std::vector<std::pair<double, std::string>> pvd;
 };
 
+// Whether out/checkpoint.json exists (read_checkpoint says why one cannot be resumed).
+bool has_checkpoint(const std::filesystem::path& out);
+
 // Writes out/checkpoint.json atomically.
 void write_checkpoint(const std::filesystem::path& out, const RunFingerprint& fingerprint, const Integrator& integrator,
                       const Checkpoint& checkpoint);
