@@ -1,11 +1,14 @@
-// libFuzzer target: the checkpoint reader (read_checkpoint, then the integrator's own state
-// through restore_integrator), as `sinew run --resume` uses them, for the energy-limited scene
-// tests/data/checkpoint_scene (its checkpoints, in fuzz/seeds/fuzz_checkpoint, carry that
-// scene's fingerprints, so mutations get past the fingerprint checks to the state, the frame
-// records and the multipliers).
+// libFuzzer target: what `sinew run --resume` reads from an output folder, in its order:
+// checkpoint.json (read_checkpoint), the frame records of frames.jsonl (read_frame_log) and the
+// integrator's own state (restore_integrator), for the energy-limited scene
+// tests/data/checkpoint_scene. An input is the checkpoint, optionally followed by a line
+// "---frames.jsonl---" and the frame records. The seeds (fuzz/seeds/fuzz_checkpoint) are that
+// scene's, carrying its fingerprints, so mutations get past the fingerprint checks to the state,
+// the frame records and the multipliers.
 #include "support.hpp"
 #include "sinew/model/model.hpp"
 #include "sinew/run/checkpoint.hpp"
+#include "sinew/run/frame_log.hpp"
 
 namespace {
 
@@ -28,13 +31,20 @@ Resumable& resumable() {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   Resumable& r = resumable();
-  const auto path = sinew::fuzz::write_input(data, size, "checkpoint.json");
+  const std::string input(reinterpret_cast<const char*>(data), size);
+  const std::string separator = "\n---frames.jsonl---\n";
+  const std::size_t split = input.find(separator);
+  const auto checkpoint = sinew::fuzz::write_input(input.substr(0, split), "checkpoint.json");
+  const auto frames = sinew::fuzz::write_input(
+      split == std::string::npos ? std::string() : input.substr(split + separator.size()), "frames.jsonl");
+  const auto out = checkpoint.parent_path();
   sinew::fuzz::expect_clean(
       [&] {
-        const sinew::Checkpoint c = sinew::read_checkpoint(path.parent_path(), r.fingerprint, *r.model.integrator,
-                                                           r.model.initial.x.size(), r.scene.frames);
-        sinew::restore_integrator(*r.model.integrator, c, path.parent_path());
+        const sinew::Checkpoint c =
+            sinew::read_checkpoint(out, r.fingerprint, *r.model.integrator, r.model.initial.x.size(), r.scene.frames);
+        sinew::read_frame_log(out, c.frame);
+        sinew::restore_integrator(*r.model.integrator, c, out);
       },
-      path);
+      {checkpoint, frames});
   return 0;
 }

@@ -1,10 +1,13 @@
 // --resume trusts nothing in the output folder: a checkpoint with a frame number that is huge,
-// negative or fractional, frame records out of order, values of the wrong type or a hostile
-// integrator state is refused naming the file and JSON path; a checkpoint resumes only while
-// every file the scene reads (mesh, embedded surface, rig, bone mesh) is unchanged.
+// negative or fractional, values of the wrong type or a hostile integrator state, and frame
+// records (frames.jsonl) missing, out of order or damaged are refused naming the file and JSON
+// path; a checkpoint resumes only while every file the scene reads (mesh, embedded surface, rig,
+// bone mesh) is unchanged.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "io_test_support.hpp"
@@ -117,15 +120,9 @@ TEST(Checkpoint, DamagedContentIsRefusedNamingTheJsonPath) {
     EXPECT_NE(message.find("checkpoint.json"), std::string::npos) << message;
     for (const auto& w : words) EXPECT_NE(message.find(w), std::string::npos) << w << " not in: " << message;
   };
-  refused([](json& j) { j["frames"][1]["frame"] = 1; }, {"/frames/1/frame", "is frame 1, expected 2"});
-  refused([](json& j) { j["frames"].erase(1); }, {"/frames", "holds 1 frame records"});
-  refused([](json& j) { j["frames"][0]["newton_iterations"] = 1.5; }, {"/frames/0/newton_iterations", "whole number"});
-  refused([](json& j) { j["frames"][0]["counters"] = json::array(); }, {"/frames/0/counters", "object"});
-  refused([](json& j) { j["frames"][0].erase("residual"); }, {"/frames/0/residual", "missing"});
   refused([](json& j) { j["x"][3] = "1"; }, {"/x/3", "number"});
   refused([](json& j) { j["x"].erase(0); }, {"/x", "DOFs"});
   refused([](json& j) { j["integrator_state"] = 3; }, {"/integrator_state", "object"});
-  refused([](json& j) { j["pvd"] = json::array({json::array({0.0, "../../elsewhere.vtu"})}); }, {"/pvd/0/1", "frame file"});
   refused([](json& j) { j["inputs"] = json::array(); }, {"/inputs", "object"});
   refused([](json& j) { j["format"] = 2; }, {"older or another kind"});
   // Nested deeper than any Sinew file: refused while parsing, before anything recurses.
@@ -134,6 +131,61 @@ TEST(Checkpoint, DamagedContentIsRefusedNamingTheJsonPath) {
   expect_contains(error_message([&] { run(scene, out, 3, true); }), {"checkpoint.json", "nested more than"});
   std::ofstream(out / "checkpoint.json") << R"({"format": 3, "format": 3})";
   expect_contains(error_message([&] { run(scene, out, 3, true); }), {"checkpoint.json", "duplicate key"});
+}
+
+TEST(Checkpoint, FrameRecordsMustBeTheFramesUpToTheCheckpointInOrder) {
+  TempDir dir;
+  dir.write("hex2.mesh", test::read_file(test::data_path("hex2.mesh")));
+  const auto scene = dir.write("scene.json", mesh_file_scene().dump());
+  const auto out = dir / "out";
+  ASSERT_TRUE(run(scene, out, 2, false).all_converged());
+  const std::string good = test::read_file(out / "frames.jsonl");
+  std::vector<json> lines;
+  for (size_t at = 0, end; (end = good.find('\n', at)) != std::string::npos; at = end + 1)
+    lines.push_back(json::parse(good.substr(at, end - at)));
+  ASSERT_EQ(lines.size(), 2u);
+  auto jsonl = [](const std::vector<json>& records) {
+    std::string text;
+    for (const json& r : records) text += r.dump() + "\n";
+    return text;
+  };
+  auto refused = [&](const std::string& text, const std::vector<std::string>& words) {
+    dir.write("out/frames.jsonl", text);
+    std::vector<std::string> all = {(out / "frames.jsonl").string()};
+    all.insert(all.end(), words.begin(), words.end());
+    expect_contains(error_message([&] { run(scene, out, 3, true); }), all);
+  };
+  refused(jsonl({lines[0], lines[0]}), {": line 2: /frame: is frame 1, expected frame 2"});
+  refused(jsonl({lines[1], lines[0]}), {": line 1: /frame: is frame 2, expected frame 1"});
+  refused(jsonl({lines[0]}), {"holds 1 whole frame record(s), the checkpoint is at frame 2"});
+  refused(jsonl({lines[0]}) + lines[1].dump(), {"holds 1 whole frame record(s)"});  // the last line cut short
+  refused("", {"holds 0 whole frame record(s)"});
+  json bad = lines[0];
+  bad["newton_iterations"] = 1.5;
+  refused(jsonl({bad, lines[1]}), {": line 1: /newton_iterations: must be a whole number"});
+  bad = lines[1];
+  bad["counters"] = json::array();
+  refused(jsonl({lines[0], bad}), {": line 2: /counters: must be an object"});
+  bad = lines[0];
+  bad.erase("residual");
+  refused(jsonl({bad, lines[1]}), {": line 1: /residual: missing"});
+  refused(jsonl({lines[0]}) + std::string(3000, '[') + "\n", {": line 2", "nested more than"});
+  refused(jsonl({lines[0]}) + "{\"frame\": 2, \"frame\": 2}\n", {": line 2", "duplicate key"});
+  std::filesystem::remove(out / "frames.jsonl");
+  expect_contains(error_message([&] { run(scene, out, 3, true); }), {"frames.jsonl", "missing or unreadable"});
+
+  // Records past the checkpoint (a frame that failed after it, a line a killed run left
+  // unfinished) are dropped; the resumed run continues the records from the checkpoint's frame.
+  json failed = lines[1];
+  failed["frame"] = 3;
+  failed["converged"] = false;
+  dir.write("out/frames.jsonl", jsonl({lines[0], lines[1], failed}) + "{\"frame\": 4, \"ti");
+  const RunSummary resumed = run(scene, out, 3, true);
+  ASSERT_EQ(resumed.frames.size(), 3u);
+  EXPECT_TRUE(resumed.frames[2].converged);
+  const std::string after = test::read_file(out / "frames.jsonl");
+  EXPECT_EQ(after.substr(0, good.size()), good);
+  EXPECT_EQ(std::count(after.begin(), after.end(), '\n'), 3);
 }
 
 TEST(Checkpoint, TheEnergyLimitedStatesMultiplierKeysMustNameConstraintsOfTheMesh) {

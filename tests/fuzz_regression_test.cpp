@@ -17,6 +17,7 @@
 #include "sinew/model/model.hpp"
 #include "sinew/model/scene.hpp"
 #include "sinew/run/checkpoint.hpp"
+#include "sinew/run/frame_log.hpp"
 
 namespace sinew {
 namespace {
@@ -76,13 +77,26 @@ std::map<std::string, Reader> readers() {
            EXPECT_NE(std::string(e.what()).find("input."), std::string::npos) << input << ": " << e.what();
          }
        }},
-      {"fuzz_checkpoint", as("checkpoint.json",
-                              [](const fs::path& p) {
-                                static Resumable r;
-                                const Checkpoint c = read_checkpoint(p.parent_path(), r.fingerprint, *r.model.integrator,
-                                                                     r.model.initial.x.size(), r.scene.frames);
-                                restore_integrator(*r.model.integrator, c, p.parent_path());
-                              })},
+      {"fuzz_checkpoint",
+       [](const fs::path& input, const test::TempDir& dir) {
+         // The checkpoint, then after a line ---frames.jsonl--- the frame records (fuzz_checkpoint.cpp).
+         static Resumable r;
+         const std::string text = slurp(input), separator = "\n---frames.jsonl---\n";
+         const std::size_t split = text.find(separator);
+         dir.write("checkpoint.json", text.substr(0, split));
+         dir.write("frames.jsonl", split == std::string::npos ? std::string() : text.substr(split + separator.size()));
+         try {
+           const Checkpoint c = read_checkpoint(dir.path(), r.fingerprint, *r.model.integrator, r.model.initial.x.size(),
+                                                r.scene.frames);
+           read_frame_log(dir.path(), c.frame);
+           restore_integrator(*r.model.integrator, c, dir.path());
+         } catch (const Error& e) {
+           const std::string message = e.what();
+           EXPECT_TRUE(message.find("checkpoint.json") != std::string::npos ||
+                       message.find("frames.jsonl") != std::string::npos)
+               << input << ": the error names no file: " << message;
+         }
+       }},
       {"fuzz_expression",
        [](const fs::path& input, const test::TempDir&) {
          try {

@@ -4,13 +4,11 @@
 
 #include <cstdint>
 #include <fstream>
-#include <regex>
 
 #include "json_checks.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/io/atomic_file.hpp"
 #include "sinew/model/json_reader.hpp"
-#include "sinew/run/run_summary.hpp"
 
 namespace sinew {
 namespace {
@@ -77,8 +75,6 @@ bool has_checkpoint(const fs::path& out) {
 
 void write_checkpoint(const fs::path& out, const RunFingerprint& fingerprint, const Integrator& integrator,
                       const Checkpoint& c) {
-  nlohmann::json frames = nlohmann::json::array();
-  for (const auto& r : c.frames) frames.push_back(frame_to_json(r));
   nlohmann::json inputs = nlohmann::json::object();
   for (const auto& input : fingerprint.inputs) inputs[input.name] = input.fingerprint;
   nlohmann::json j = {{"format", kFormat},
@@ -86,9 +82,7 @@ void write_checkpoint(const fs::path& out, const RunFingerprint& fingerprint, co
                       {"scene_fingerprint", fingerprint.scene},
                       {"inputs", inputs},
                       {"frame", c.frame},
-                      {"integrator_state", c.integrator_state},
-                      {"frames", frames},
-                      {"pvd", c.pvd}};
+                      {"integrator_state", c.integrator_state}};
   j["x"] = std::vector<double>(c.state.x.data(), c.state.x.data() + c.state.x.size());
   if (integrator.dynamic()) j["v"] = std::vector<double>(c.state.v.data(), c.state.v.data() + c.state.v.size());
   write_file_atomically(out / "checkpoint.json", [&](std::ostream& os) { os << j.dump() << '\n'; });
@@ -148,29 +142,6 @@ Checkpoint read_checkpoint(const fs::path& out, const RunFingerprint& fingerprin
     c.integrator_state = member(j, "integrator_state", "");
     if (!c.integrator_state.is_object())
       throw Error(fmt::format("must be an object, got {}", kind(c.integrator_state)), "/integrator_state");
-    // Frames 1..frame, each once and in order: a resumed run appends the frames after them.
-    const nlohmann::json& frames = array(member(j, "frames", ""), "/frames");
-    if (frames.size() != static_cast<std::size_t>(c.frame))
-      throw Error(fmt::format("holds {} frame records, the checkpoint is at frame {}", frames.size(), c.frame), "/frames");
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-      const std::string where = fmt::format("/frames/{}", i);
-      FrameRecord r = frame_from_json(frames[i], where);
-      if (r.frame != static_cast<int>(i) + 1)
-        throw Error(fmt::format("is frame {}, expected {} (frames 1 to {} in order)", r.frame, i + 1, c.frame), where + "/frame");
-      c.frames.push_back(std::move(r));
-    }
-    // simulation.pvd's entries name our own frame files only (they are written into its XML).
-    static const std::regex frame_file(R"(frame_\d{4,}\.vtu)");
-    const nlohmann::json& pvd = array(member(j, "pvd", ""), "/pvd");
-    for (std::size_t i = 0; i < pvd.size(); ++i) {
-      const std::string where = fmt::format("/pvd/{}", i);
-      if (!pvd[i].is_array() || pvd[i].size() != 2) throw Error("must be a [time, file] pair", where);
-      const double time = number(pvd[i][0], where + "/0");
-      const std::string name = string(pvd[i][1], where + "/1");
-      if (!std::isfinite(time)) throw Error("must be a finite time", where + "/0");
-      if (!std::regex_match(name, frame_file)) throw Error("must name a frame file frame_NNNN.vtu", where + "/1");
-      c.pvd.emplace_back(time, name);
-    }
   });
   return c;
 }

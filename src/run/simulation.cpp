@@ -10,6 +10,7 @@
 #include "sinew/io/folder_lock.hpp"
 #include "sinew/model/model.hpp"
 #include "sinew/run/checkpoint.hpp"
+#include "sinew/run/frame_log.hpp"
 #include "sinew/run/frame_output.hpp"
 #include "sinew/run/run_summary.hpp"
 
@@ -24,7 +25,7 @@ bool RunSummary::all_converged() const {
 // A fresh run replaces the files an earlier run left in the folder (only the names Sinew
 // writes), so a shorter run does not leave stale frames behind.
 void remove_previous_outputs(const std::filesystem::path& out) {
-  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|simulation\.pvd|summary\.json|checkpoint\.json))");
+  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|simulation\.pvd|summary\.json|frames\.jsonl|checkpoint\.json))");
   std::error_code ec;
   if (!std::filesystem::is_directory(out, ec)) return;
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
@@ -110,45 +111,67 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
     lock.emplace(out);
     remove_stale_temporary_files(out);
   }
+  auto frame_time = [&](int frame) { return integrator.dynamic() ? frame * integrator.frame_duration() : double(frame); };
   if (options.resume) {
     Checkpoint c = read_checkpoint(out, fingerprint, integrator, state.x.size(), frames);
+    summary.frames = read_frame_log(out, c.frame);
     restore_integrator(integrator, c, out);
     state.x = std::move(c.state.x);
     if (integrator.dynamic()) state.v = std::move(c.state.v);
-    summary.frames = std::move(c.frames);
-    output.set_pvd(std::move(c.pvd));
+    output.resume_after(c.frame, frame_time);
     first_frame = c.frame + 1;
   } else if (writing) {
     remove_previous_outputs(out);
   }
-  auto frame_time = [&](int frame) { return integrator.dynamic() ? frame * integrator.frame_duration() : double(frame); };
+  // What is written per frame costs the same at frame 10 and at frame 100,000: the frame's
+  // files, one line of frames.jsonl, the checkpoint (the state alone). summary.json lists every
+  // frame, so it is rewritten only when the frame count has doubled since its last writing (at
+  // most twice the frames in all), at the end, and when the run stops on an error.
+  std::optional<FrameLog> log;
+  if (writing) log.emplace(out, summary.frames);
+  std::size_t summary_due = 1;
+  auto write_summary_now = [&] {
+    write_summary(out, scene, model, summary, frames);
+    summary_due = 2 * summary.frames.size();
+  };
   if (first_frame == 1) output.write(0, frame_time(0), state);
 
   // ---- one frame loop for every integrator
-  for (int frame = first_frame; frame <= frames; ++frame) {
-    const auto t_frame = Clock::now();
-    if (options.progress) options.progress({frame, frames, 0, 0.0, elapsed(), false, nullptr});
-    auto progress = [&](int iteration, double residual) {
-      if (options.progress) options.progress({frame, frames, iteration, residual, elapsed(), false, nullptr});
-    };
-    FrameRecord record;
-    static_cast<StepStats&>(record) = integrator.advance_frame(state, frame, progress);
-    record.frame = frame;
-    record.time = frame_time(frame);
-    measure(model, state, record);
-    record.seconds = std::chrono::duration<double>(Clock::now() - t_frame).count();
-    summary.frames.push_back(record);
-    output.write(frame, record.time, state);
-    if (writing) {
-      write_summary(out, scene, model, summary, frames);
-      // Only after a converged frame, so --resume never continues from a failed state.
-      if (record.converged)
-        write_checkpoint(out, fingerprint, integrator,
-                         {frame, state, integrator.checkpoint_state(), summary.frames, output.pvd()});
+  try {
+    for (int frame = first_frame; frame <= frames; ++frame) {
+      const auto t_frame = Clock::now();
+      if (options.progress) options.progress({frame, frames, 0, 0.0, elapsed(), false, nullptr});
+      auto progress = [&](int iteration, double residual) {
+        if (options.progress) options.progress({frame, frames, iteration, residual, elapsed(), false, nullptr});
+      };
+      FrameRecord record;
+      static_cast<StepStats&>(record) = integrator.advance_frame(state, frame, progress);
+      record.frame = frame;
+      record.time = frame_time(frame);
+      measure(model, state, record);
+      record.seconds = std::chrono::duration<double>(Clock::now() - t_frame).count();
+      summary.frames.push_back(record);
+      output.write(frame, record.time, state);
+      if (writing) {
+        log->append(record);
+        // Only after a converged frame, so --resume never continues from a failed state.
+        if (record.converged) write_checkpoint(out, fingerprint, integrator, {frame, state, integrator.checkpoint_state()});
+        if (summary.frames.size() >= summary_due) write_summary_now();
+      }
+      if (options.progress) options.progress({frame, frames, record.newton_iterations, record.residual, elapsed(), true, &summary.frames.back()});
+      if (!record.converged) break;  // later frames would start from an unsolved state
     }
-    if (options.progress) options.progress({frame, frames, record.newton_iterations, record.residual, elapsed(), true, &summary.frames.back()});
-    if (!record.converged) break;  // later frames would start from an unsolved state
+  } catch (...) {
+    // The frames before the error still get their summary; the error is what the caller sees.
+    if (writing) {
+      try {
+        write_summary_now();
+      } catch (...) {
+      }
+    }
+    throw;
   }
+  if (writing) write_summary_now();
   summary.x = state.x;
   return summary;
 }

@@ -32,10 +32,10 @@ grep -q "^frame 1/4 Newton 1 residual" "$TMP/err" || fail "no per-iteration line
 if grep -q $'\r\|\033' "$TMP/err"; then fail "terminal control characters in non-terminal output"; fi
 grep -q "^results in $TMP/a " "$TMP/out" || fail "no results line: $(cat "$TMP/out")"
 grep -q "^81 vertices, 32 elements, 4 frame(s)" "$TMP/out" || fail "no size line: $(cat "$TMP/out")"
-for f in simulation.pvd summary.json checkpoint.json frame_0000.vtu frame_0004.vtu surface_0000.obj surface_0004.obj; do
+for f in simulation.pvd summary.json frames.jsonl checkpoint.json frame_0000.vtu frame_0004.vtu surface_0000.obj surface_0004.obj; do
   [[ -s $TMP/a/$f ]] || fail "missing output $f"
 done
-if ls -A "$TMP/a" | grep -q -v -E '^(simulation\.pvd|summary\.json|checkpoint\.json|frame_000[0-4]\.vtu|surface_000[0-4]\.obj)$'; then
+if ls -A "$TMP/a" | grep -q -v -E '^(simulation\.pvd|summary\.json|frames\.jsonl|checkpoint\.json|frame_000[0-4]\.vtu|surface_000[0-4]\.obj)$'; then
   fail "unexpected files (temporaries left behind?): $(ls -A "$TMP/a")"
 fi
 grep -c "<DataSet " "$TMP/a/simulation.pvd" | grep -qx 5 || fail "simulation.pvd does not list 5 frames"

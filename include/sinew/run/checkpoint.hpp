@@ -1,15 +1,14 @@
 #pragma once
 // The checkpoint of a run (out/checkpoint.json), one format for every integrator: written after
-// each converged frame, it holds the state (positions; velocities for dynamics), the
-// integrator's own state (e.g. the energy-limited stepper's multipliers), the frames so far and
-// simulation.pvd's entries. It resumes only the run that wrote it: the same integrator, the
+// each converged frame, it holds the state (positions; velocities for dynamics) and the
+// integrator's own state (e.g. the energy-limited stepper's multipliers), nothing that grows
+// with the frames (their records are in frames.jsonl, frame_log.hpp). It resumes only the run that wrote it: the same integrator, the
 // same scene file and the same bytes in every file the scene reads (mesh, surfaces, rig, bone
 // meshes). Everything read from it is checked (docs/hardening.md): a hostile or damaged
 // checkpoint is a sinew::Error naming the file and JSON path, never a run that goes astray.
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "sinew/integrator/integrator.hpp"
@@ -36,8 +35,6 @@ struct Checkpoint {
   int frame = 0;  // the last converged frame
   State state;
   nlohmann::json integrator_state = nlohmann::json::object();
-  std::vector<FrameRecord> frames;
-  std::vector<std::pair<double, std::string>> pvd;
 };
 
 // Whether out/checkpoint.json exists (read_checkpoint says why one cannot be resumed).
