@@ -5,7 +5,7 @@
 //
 //   stretch_bench [--sizes 16,33,67] [--models snh,filtered,fixed,corot] [--frames 12]
 //                 [--run-frames 67:1,corot@33:5] [--newton-cap 100] [--cg-cap 10000]
-//                 [--caps corot:20:1000] [--threads N]
+//                 [--caps corot:20:1000] [--threads N] [--preconditioners block_jacobi,multigrid]
 //
 // Each (size, model) runs in its own child process (this program re-executed with --child), so
 // the peak resident memory reported is that run's alone. --run-frames D:K (or MODEL@D:K) runs
@@ -44,6 +44,7 @@ struct Settings {
   int cg_cap = 10000;
   double linear_tolerance = 1e-3;
   int threads = 0;
+  std::string preconditioner = "block_jacobi";
 };
 
 StretchConfig config_for(int diameter, const std::string& family, const Settings& s) {
@@ -53,6 +54,7 @@ StretchConfig config_for(int diameter, const std::string& family, const Settings
   c.frames = s.frames;
   c.solver = paper_solver(s.linear_tolerance, s.newton_cap);
   c.solver.linear.max_iterations = s.cg_cap;
+  c.solver.linear.preconditioner = s.preconditioner;
   return c;
 }
 
@@ -101,7 +103,7 @@ std::vector<int> parse_ints(const std::string& text) {
 
 struct Row {
   int diameter = 0;
-  std::string model;
+  std::string model, preconditioner;
   long hexes = 0, dofs = 0;
   int frames_run = 0, frames_total = 0, converged = 0;
   long newton = 0, cg = 0;
@@ -140,6 +142,7 @@ Row row_from(const nlohmann::json& j, const std::string& model, double full_stre
 int main(int argc, char** argv) {
   CLI::App app("Paper 000 stretch test as a solver benchmark");
   std::string sizes = "16,33,67", models = "snh,filtered,fixed,corot", run_frames_text, caps_text;
+  std::string preconditioners = "block_jacobi";
   Settings s;
   bool child = false;
   int child_diameter = 0, child_run_frames = 0;
@@ -153,6 +156,8 @@ int main(int argc, char** argv) {
   app.add_option("--cg-cap", s.cg_cap, "CG iterations per Newton iteration at most");
   app.add_option("--linear-tolerance", s.linear_tolerance, "relative CG tolerance");
   app.add_option("--threads", s.threads, "worker threads (default: all cores)");
+  app.add_option("--preconditioners", preconditioners, "PCG preconditioners to compare (comma-separated)");
+  app.add_option("--preconditioner", s.preconditioner)->group("");
   app.add_flag("--child", child)->group("");
   app.add_option("--child-diameter", child_diameter)->group("");
   app.add_option("--child-family", child_family)->group("");
@@ -195,8 +200,14 @@ int main(int argc, char** argv) {
     // popen runs a shell, whose /proc/self/exe is the shell: resolve our own path here.
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe");
     std::vector<Row> rows;
+    std::vector<std::string> preconditioner_names;
+    {
+      std::stringstream ss(preconditioners);
+      for (std::string item; std::getline(ss, item, ',');) preconditioner_names.push_back(item);
+    }
     for (int d : parse_ints(sizes)) {
-      for (const auto& key : model_keys) {
+      for (const auto& key : model_keys)
+      for (const auto& pc : preconditioner_names) {
         int k = s.frames;
         if (run_frames.count({"", d})) k = run_frames[{"", d}];
         if (run_frames.count({key, d})) k = run_frames[{key, d}];
@@ -204,9 +215,10 @@ int main(int argc, char** argv) {
         const auto [newton_cap, cg_cap] = caps.count(key) ? caps[key] : std::make_pair(s.newton_cap, s.cg_cap);
         const std::string cmd = fmt::format(
             "'{}' --child --child-diameter {} --child-family {} --child-run-frames {} --frames {} "
-            "--newton-cap {} --cg-cap {} --linear-tolerance {} --threads {}",
-            self.string(), d, kModels.at(key), k, s.frames, newton_cap, cg_cap, s.linear_tolerance, s.threads);
-        std::fprintf(stderr, "running D=%d %s (%d of %d frames)\n", d, kModels.at(key).c_str(), k, s.frames);
+            "--newton-cap {} --cg-cap {} --linear-tolerance {} --threads {} --preconditioner {}",
+            self.string(), d, kModels.at(key), k, s.frames, newton_cap, cg_cap, s.linear_tolerance, s.threads, pc);
+        std::fprintf(stderr, "running D=%d %s, %s (%d of %d frames)\n", d, kModels.at(key).c_str(), pc.c_str(), k,
+                     s.frames);
         FILE* pipe = popen(cmd.c_str(), "r");
         if (!pipe) throw Error("cannot start a child run", cmd);
         std::string text;
@@ -216,41 +228,42 @@ int main(int argc, char** argv) {
         rows.push_back(row_from(nlohmann::json::parse(text), key, full_stretch));
         rows.back().newton_cap = newton_cap;
         rows.back().cg_cap = cg_cap;
+        rows.back().preconditioner = pc;
       }
     }
 
     // ---- tables
-    std::map<int, const Row*> snh_at;
+    std::map<std::pair<int, std::string>, const Row*> snh_at;
     std::map<std::string, const Row*> smallest;
     for (const auto& r : rows) {
-      if (r.model == "snh") snh_at[r.diameter] = &r;
-      if (!smallest.count(r.model)) smallest[r.model] = &r;
+      if (r.model == "snh") snh_at[{r.diameter, r.preconditioner}] = &r;
+      if (!smallest.count(r.model + "/" + r.preconditioner)) smallest[r.model + "/" + r.preconditioner] = &r;
     }
-    std::printf("\nStretch benchmark (paper 000 Fig. 5-6): nu = 0.49, E = 1e5, |residual| < 1e-2, PCG block-Jacobi, "
-                "CG tolerance %g, %d frames for 3.4x; threads: %s\n\n",
+    std::printf("\nStretch benchmark (paper 000 Fig. 5-6): nu = 0.49, E = 1e5, |residual| < 1e-2, PCG (preconditioner "
+                "per row), CG tolerance %g, %d frames for 3.4x; threads: %s\n\n",
                 s.linear_tolerance, s.frames, s.threads > 0 ? std::to_string(s.threads).c_str() : "all cores");
-    std::printf("| D | model | hexes | DOFs | caps (Newton/CG) | frames (conv/run) | stretch | Newton/step (max) | CG/step | "
-                "CG/Newton | assembly ms/it | solve ms/it | total s | peak MB | volume %% | min J |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf("| D | model | preconditioner | hexes | DOFs | caps (Newton/CG) | frames (conv/run) | stretch | Newton/step (max) | "
+                "CG/step | CG/Newton | assembly ms/it | solve ms/it | total s | peak MB | volume %% | min J |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& r : rows) {
       const double it = std::max<long>(1, r.newton);
-      std::printf("| %d | %s | %ld | %ld | %d/%d | %d/%d | %.2f | %.1f (%d) | %.0f | %.0f | %.1f | %.1f | %.1f | %.0f | %+.2f | %.3f |\n",
-                  r.diameter, r.model.c_str(), r.hexes, r.dofs, r.newton_cap, r.cg_cap, r.converged, r.frames_run, r.stretch,
+      std::printf("| %d | %s | %s | %ld | %ld | %d/%d | %d/%d | %.2f | %.1f (%d) | %.0f | %.0f | %.1f | %.1f | %.1f | %.0f | %+.2f | %.3f |\n",
+                  r.diameter, r.model.c_str(), r.preconditioner.c_str(), r.hexes, r.dofs, r.newton_cap, r.cg_cap, r.converged, r.frames_run, r.stretch,
                   static_cast<double>(r.newton) / r.frames_run, r.max_newton, static_cast<double>(r.cg) / r.frames_run,
                   r.cg / it, 1e3 * r.assembly / it, 1e3 * r.solve / it, r.seconds, r.rss, r.volume_change, r.min_J);
     }
     std::printf("\nRatios: CG and time against stable Neo-Hookean at the same size (paper: filtered 0.83x CG, "
                 "5.3x time; fixed co-rotational 2.3x CG, 1.43x time); per-DOF cost of a Newton iteration against the "
                 "model's smallest size.\n\n");
-    std::printf("| D | model | CG / SNH CG | time / SNH time | assembly us/it/DOF | (x smallest) | solve us/it/DOF | "
-                "(x smallest) |\n");
-    std::printf("|---|---|---|---|---|---|---|---|\n");
+    std::printf("| D | model | preconditioner | CG / SNH CG | time / SNH time | assembly us/it/DOF | (x smallest) | "
+                "solve us/it/DOF | (x smallest) |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& r : rows) {
-      const Row* base = snh_at.count(r.diameter) ? snh_at[r.diameter] : nullptr;
-      const Row* small = smallest[r.model];
+      const Row* base = snh_at.count({r.diameter, r.preconditioner}) ? snh_at[{r.diameter, r.preconditioner}] : nullptr;
+      const Row* small = smallest[r.model + "/" + r.preconditioner];
       auto per_dof = [](const Row& x, double t) { return 1e6 * t / std::max<long>(1, x.newton) / x.dofs; };
       const bool same_frames = base && base->frames_run == r.frames_run;
-      std::printf("| %d | %s | %s | %s | %.3f | %.2f | %.3f | %.2f |\n", r.diameter, r.model.c_str(),
+      std::printf("| %d | %s | %s | %s | %s | %.3f | %.2f | %.3f | %.2f |\n", r.diameter, r.model.c_str(), r.preconditioner.c_str(),
                   same_frames ? fmt::format("{:.2f}", static_cast<double>(r.cg) / std::max<long>(1, base->cg)).c_str() : "-",
                   same_frames ? fmt::format("{:.2f}", r.seconds / base->seconds).c_str() : "-", per_dof(r, r.assembly),
                   per_dof(r, r.assembly) / per_dof(*small, small->assembly), per_dof(r, r.solve),

@@ -42,12 +42,21 @@ std::filesystem::path write_input(const std::string& text, const std::string& na
 }
 
 void expect_clean(const std::function<void()>& read, const std::filesystem::path& file) {
+  expect_clean(read, std::vector<std::filesystem::path>{file});
+}
+
+void expect_clean(const std::function<void()>& read, const std::vector<std::filesystem::path>& files) {
   try {
     read();
   } catch (const Error& e) {
     const std::string text = e.what();
-    if (text.find(file.filename().string()) == std::string::npos)
-      finding("an error that does not name the input file " + file.filename().string() + ": " + text);
+    bool named = false;
+    std::string names;
+    for (const auto& file : files) {
+      named = named || text.find(file.filename().string()) != std::string::npos;
+      names += (names.empty() ? "" : " or ") + file.filename().string();
+    }
+    if (!named) finding("an error that does not name the input file " + names + ": " + text);
   } catch (const std::exception& e) {
     finding(std::string("an exception other than sinew::Error: ") + e.what());
   } catch (...) {

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace sinew::fuzz {
 
@@ -20,6 +21,8 @@ std::filesystem::path write_input(const std::string& text, const std::string& na
 
 // Runs `read`; a sinew::Error must name `file` (its file name is enough), anything else aborts.
 void expect_clean(const std::function<void()>& read, const std::filesystem::path& file);
+// The same for a reader of several files: its error must name one of them.
+void expect_clean(const std::function<void()>& read, const std::vector<std::filesystem::path>& files);
 
 // read_volume_mesh on the input saved with the given extension (".vtk", ".vtu", ...).
 void fuzz_volume_mesh(const std::uint8_t* data, std::size_t size, const std::string& extension);

@@ -14,7 +14,10 @@
 #include "sinew/io/surface_reader.hpp"
 #include "sinew/material/expression.hpp"
 #include "sinew/model/rig_reader.hpp"
+#include "sinew/model/model.hpp"
 #include "sinew/model/scene.hpp"
+#include "sinew/run/checkpoint.hpp"
+#include "sinew/run/frame_log.hpp"
 
 namespace sinew {
 namespace {
@@ -36,6 +39,17 @@ Reader as(const std::string& name, std::function<void(const fs::path&)> read) {
     }
   };
 }
+
+// fuzz_checkpoint's scene, built once: the findings are its checkpoints, damaged.
+struct Resumable {
+  Resumable()
+      : scene(load_scene(test::data_path("checkpoint_scene/scene.json"))),
+        model(build_model(scene)),
+        fingerprint(fingerprint_run(scene)) {}
+  Scene scene;
+  Model model;
+  RunFingerprint fingerprint;
+};
 
 std::map<std::string, Reader> readers() {
   const auto mesh = [](const fs::path& p) { read_volume_mesh(p); };
@@ -61,6 +75,26 @@ std::map<std::string, Reader> readers() {
            read_volume_mesh(dir / "input.node");
          } catch (const Error& e) {
            EXPECT_NE(std::string(e.what()).find("input."), std::string::npos) << input << ": " << e.what();
+         }
+       }},
+      {"fuzz_checkpoint",
+       [](const fs::path& input, const test::TempDir& dir) {
+         // The checkpoint, then after a line ---frames.jsonl--- the frame records (fuzz_checkpoint.cpp).
+         static Resumable r;
+         const std::string text = slurp(input), separator = "\n---frames.jsonl---\n";
+         const std::size_t split = text.find(separator);
+         dir.write("checkpoint.json", text.substr(0, split));
+         dir.write("frames.jsonl", split == std::string::npos ? std::string() : text.substr(split + separator.size()));
+         try {
+           const Checkpoint c = read_checkpoint(dir.path(), r.fingerprint, *r.model.integrator, r.model.initial.x.size(),
+                                                r.scene.frames);
+           read_frame_log(dir.path(), c.frame);
+           restore_integrator(*r.model.integrator, c, dir.path());
+         } catch (const Error& e) {
+           const std::string message = e.what();
+           EXPECT_TRUE(message.find("checkpoint.json") != std::string::npos ||
+                       message.find("frames.jsonl") != std::string::npos)
+               << input << ": the error names no file: " << message;
          }
        }},
       {"fuzz_expression",

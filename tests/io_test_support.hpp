@@ -83,5 +83,11 @@ inline void expect_contains(const std::string& text, std::initializer_list<const
     EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
   }
 }
+// The same for parts built at run time (paths, pids).
+inline void expect_contains(const std::string& text, const std::vector<std::string>& parts) {
+  for (const std::string& part : parts) {
+    EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
+  }
+}
 
 }  // namespace sinew::test

@@ -29,7 +29,7 @@ namespace {
 using test::error_message;
 using test::expect_contains;
 
-const std::vector<std::string> kBuiltIn = {"jacobi", "block_jacobi", "lagged_cholesky"};
+const std::vector<std::string> kBuiltIn = {"jacobi", "block_jacobi", "lagged_cholesky", "multigrid"};
 
 // A random SPD matrix with 3x3 vertex blocks (B^T B + 0.1 I), with the rows and columns of the
 // flagged DOFs replaced by the identity, as Problem::hessian does for fixed DOFs.
@@ -99,11 +99,11 @@ TEST(Preconditioner, RegistryListsTheBuiltInOnes) {
 
 TEST(Preconditioner, RegistryRejectsUnknownAndDuplicateNames) {
   const std::string unknown = error_message([] { make_preconditioner("ilu"); });
-  expect_contains(unknown, {"unknown preconditioner 'ilu'", "registered: jacobi, block_jacobi, lagged_cholesky"});
+  expect_contains(unknown, {"unknown preconditioner 'ilu'", "registered: jacobi, block_jacobi, lagged_cholesky, multigrid"});
   LinearSolverSettings s;
   s.kind = "pcg";
-  s.preconditioner = "multigrid";
-  expect_contains(error_message([&] { make_linear_solver(s); }), {"unknown preconditioner 'multigrid'", "block_jacobi"});
+  s.preconditioner = "amg";
+  expect_contains(error_message([&] { make_linear_solver(s); }), {"unknown preconditioner 'amg'", "block_jacobi"});
   auto factory = [] { return make_preconditioner("jacobi"); };
   expect_contains(error_message([&] { register_preconditioner("block_jacobi", "again", factory); }),
                   {"'block_jacobi' is already registered"});

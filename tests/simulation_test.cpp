@@ -73,7 +73,7 @@ TEST(Simulation, WritesEveryFrameAndCompleteReports) {
   EXPECT_EQ(s.elements, 32);
   EXPECT_NEAR(s.rest_volume, 0.0625, 1e-14);
 
-  std::vector<std::string> expected = {"checkpoint.json", "simulation.pvd", "summary.json"};
+  std::vector<std::string> expected = {"checkpoint.json", "frames.jsonl", "simulation.pvd", "summary.json"};
   for (int f = 0; f <= 4; ++f) {
     expected.push_back(fmt::format("frame_{:04d}.vtu", f));
     expected.push_back(fmt::format("surface_{:04d}.obj", f));

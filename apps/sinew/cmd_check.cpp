@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <random>
 
@@ -29,6 +30,7 @@
 #include "sinew/motion/prescribed_motion.hpp"
 #include "sinew/forms/element_form.hpp"
 #include "sinew/integrator/quasistatic_integrator.hpp"
+#include "sinew/model/json_reader.hpp"
 #include "sinew/model/model.hpp"
 #include "sinew/run/simulation.hpp"
 
@@ -47,23 +49,35 @@ struct SavedState {
 
 SavedState read_state(const std::filesystem::path& dir, Eigen::Index dofs) {
   const auto path = dir / "checkpoint.json";
-  std::ifstream in(path);
-  if (!in) throw Error("no checkpoint.json (run the scene with --out first)", path.string());
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error("no checkpoint.json (run the scene with --out first)", path.string());
+  // The scene reader's parser: bounded nesting, duplicate keys refused.
+  const nlohmann::json j = read_json_file(path, "checkpoint");
   SavedState s;
-  try {
-    const nlohmann::json j = nlohmann::json::parse(in);
-    const auto x = j.at("x").get<std::vector<double>>();
-    if (static_cast<Eigen::Index>(x.size()) != dofs)
-      throw Error(fmt::format("/x: has {} values, the scene's mesh has {} DOFs", x.size(), dofs), path.string());
-    s.x = Eigen::Map<const Eigen::VectorXd>(x.data(), dofs);
-    if (!s.x.allFinite()) throw Error("/x: state is not finite", path.string());
-    if (j.contains("v")) {
-      const auto v = j.at("v").get<std::vector<double>>();
-      if (static_cast<Eigen::Index>(v.size()) == dofs) s.v = Eigen::Map<const Eigen::VectorXd>(v.data(), dofs);
+  auto numbers = [&](const char* key) -> std::optional<Eigen::VectorXd> {
+    if (!j.is_object() || !j.contains(key)) return std::nullopt;
+    const nlohmann::json& a = j.at(key);
+    const std::string where = fmt::format("{}: /{}", path.string(), key);
+    if (!a.is_array()) throw Error("must be an array of numbers", where);
+    if (static_cast<Eigen::Index>(a.size()) != dofs)
+      throw Error(fmt::format("has {} values, the scene's mesh has {} DOFs", a.size(), dofs), where);
+    Eigen::VectorXd v(dofs);
+    for (Eigen::Index i = 0; i < dofs; ++i) {
+      if (!a[static_cast<size_t>(i)].is_number()) throw Error("must be an array of numbers", where);
+      v(i) = a[static_cast<size_t>(i)].get<double>();
     }
-    s.frame = j.value("frame", 0);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(fmt::format("corrupt checkpoint: {}", e.what()), path.string());
+    if (!v.allFinite()) throw Error("state is not finite", where);
+    return v;
+  };
+  const auto x = numbers("x");
+  if (!x) throw Error("has no state \"x\" (not a checkpoint Sinew wrote)", path.string());
+  s.x = *x;
+  if (const auto v = numbers("v")) s.v = *v;
+  if (j.contains("frame")) {
+    const nlohmann::json& f = j.at("frame");
+    if (!f.is_number_integer() || f.get<long long>() < 0 || f.get<long long>() > kMaxFrames)
+      throw Error(fmt::format("must be a whole frame number from 0 to {}", kMaxFrames), path.string() + ": /frame");
+    s.frame = static_cast<int>(f.get<long long>());
   }
   return s;
 }

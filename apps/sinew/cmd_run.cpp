@@ -26,7 +26,7 @@ void run(const Options& o, int& exit_code) {
   ro.out_dir = o.out.empty() ? std::filesystem::path("out") / std::filesystem::path(o.scene).stem() : std::filesystem::path(o.out);
   if (!o.frames.empty()) {
     const long f = parse_integer(o.frames, "--frames");
-    if (f < 1 || f > 1000000) throw Error(fmt::format("must be between 1 and 1000000, got {}", f), "--frames");
+    if (f < 1 || f > kMaxFrames) throw Error(fmt::format("must be between 1 and {}, got {}", kMaxFrames, f), "--frames");
     ro.frames = static_cast<int>(f);
   }
   std::unique_ptr<tbb::global_control> threads;

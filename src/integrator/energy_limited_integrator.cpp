@@ -64,8 +64,25 @@ nlohmann::json EnergyLimitedIntegrator::checkpoint_state() const {
 }
 
 void EnergyLimitedIntegrator::restore_state(const nlohmann::json& state, int frame) {
+  // Keys index the constraints (stepper: an element's energy row is its index e >= 0, a contact
+  // row -1 - 3 vertex - s): a key past the mesh would index past its elements.
+  const Discretization& disc = stepper_->limited_form().discretization();
+  const long elements = static_cast<long>(disc.num_elements());
+  const long lowest_key = -static_cast<long>(disc.num_dofs());  // -1 - 3 (V - 1) - 2
+  if (!state.is_object() || !state.contains("multipliers") || !state.at("multipliers").is_array())
+    throw Error("must hold the array \"multipliers\"", "");
   std::map<long, double> multipliers;
-  for (const auto& m : state.at("multipliers")) multipliers[m.at(0).get<long>()] = m.at(1).get<double>();
+  const nlohmann::json& list = state.at("multipliers");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const nlohmann::json& m = list[i];
+    const std::string where = fmt::format("/multipliers/{}", i);
+    if (!m.is_array() || m.size() != 2 || !m[0].is_number_integer() || !m[1].is_number())
+      throw Error("must be a [constraint key, multiplier] pair of a whole number and a number", where);
+    const long key = m[0].get<long>();
+    if (key < lowest_key || key >= elements)
+      throw Error(fmt::format("constraint key {} is outside the mesh's range {} to {}", key, lowest_key, elements - 1), where);
+    multipliers[key] = m[1].get<double>();
+  }
   stepper_->set_multipliers(std::move(multipliers));
   stepper_->set_time(frame * frame_duration());
 }

@@ -1,11 +1,13 @@
 #include "sinew/io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <fmt/format.h>
+#include <regex>
 #include <streambuf>
 #include <system_error>
 #include <vector>
@@ -82,6 +84,15 @@ struct TemporaryFile {
 
 std::atomic<unsigned> temporary_counter{0};
 
+// ".NAME.tmp-PID-N", NAME the target's file name.
+std::string temporary_name(const fs::path& target, unsigned counter) {
+  return fmt::format(".{}.tmp-{}-{}", target.filename().string(), ::getpid(), counter);
+}
+const std::regex& temporary_pattern() {
+  static const std::regex pattern(R"(\..+\.tmp-([0-9]{1,9})-[0-9]+)");
+  return pattern;
+}
+
 }  // namespace
 
 void write_file_atomically(const fs::path& path, const std::function<void(std::ostream&)>& writer) {
@@ -96,8 +107,7 @@ void write_file_atomically(const fs::path& path, const std::function<void(std::o
 
   TemporaryFile tmp;
   for (int attempt = 0; attempt < 100 && tmp.fd < 0; ++attempt) {
-    tmp.path = dir / fmt::format(".{}.tmp-{}-{}", path.filename().string(), ::getpid(),
-                                 temporary_counter.fetch_add(1));
+    tmp.path = dir / temporary_name(path, temporary_counter.fetch_add(1));
     tmp.fd = ::open(tmp.path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (tmp.fd < 0 && errno != EEXIST) {
       const int err = errno;
@@ -134,6 +144,25 @@ void write_file_atomically(const fs::path& path, const std::function<void(std::o
     throw Error(fmt::format("cannot replace the file: {}", reason(errno)), where);
   }
   tmp.renamed = true;
+}
+
+int remove_stale_temporary_files(const fs::path& dir) {
+  int removed = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    std::smatch m;
+    std::error_code type_ec;
+    if (!std::regex_match(name, m, temporary_pattern()) || !it->is_regular_file(type_ec)) continue;
+    const auto pid = static_cast<pid_t>(std::stol(m[1].str()));
+    const bool running = pid != ::getpid() && (::kill(pid, 0) == 0 || errno == EPERM);
+    if (running) continue;
+    if (::unlink(it->path().c_str()) != 0 && errno != ENOENT)
+      throw Error(fmt::format("cannot remove a stale temporary file: {}", reason(errno)), it->path().string());
+    ++removed;
+  }
+  if (ec) throw Error(fmt::format("cannot list the folder: {}", ec.message()), dir.string());
+  return removed;
 }
 
 void ensure_directory(const fs::path& dir) {

@@ -79,6 +79,8 @@ class Lines {
     return false;
   }
   int line() const { return line_; }
+  // Byte offset of the next line's start.
+  std::size_t offset() const { return std::min(pos_, text_.size()); }
   [[noreturn]] void fail(const std::string& message) const {
     throw Error(message, fmt::format("{}:{}", source_, line_));
   }
@@ -129,8 +131,19 @@ void check_off(std::string_view text, const std::string& source) {
   Lines in(text, source, '#');
   std::vector<std::string_view> t;
   if (!in.next(t)) in.fail_at_end("no OFF header");
-  if (t[0] != "OFF") return;  // COFF, NOFF, 4OFF...: left to CGAL
+  // Only headers whose rows this check understands go on to CGAL: leaving the others to CGAL
+  // unchecked let a fuzzed header ("OFF\x02...") drive a 43 GB allocation.
+  static const std::string_view kHeaders[] = {"OFF", "COFF", "NOFF", "CNOFF", "STOFF", "STCOFF", "STNOFF", "STCNOFF"};
+  if (std::find(std::begin(kHeaders), std::end(kHeaders), t[0]) == std::end(kHeaders)) {
+    std::string shown(t[0].substr(0, 20));
+    for (char& c : shown)
+      if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+    in.fail(fmt::format("unsupported OFF header '{}' (Sinew reads ASCII OFF, COFF, NOFF, CNOFF and their ST variants; "
+                        "not binary, 4D or n-dimensional OFF)",
+                        shown));
+  }
   t.erase(t.begin());  // "OFF nv nf ne" on one line is allowed
+  if (!t.empty() && t[0] == "BINARY") in.fail("binary OFF is not supported; write ASCII OFF");
   if (t.empty() && !in.next(t)) in.fail_at_end("missing the vertex, face and edge counts");
   if (t.size() < 2) in.fail("expected the vertex and face counts");
   const long long nv = in.index(t[0], 0, 1LL << 31, "the vertex count");
@@ -206,11 +219,6 @@ bool is_ascii_stl(const std::string& bytes) {
 // name the byte offset. Property types: [u]char/[u]int8, [u]short/[u]int16, [u]int/[u]int32,
 // float/float32, double/float64.
 void check_binary_ply(std::string_view text, const std::string& source) {
-  const std::size_t end_header = text.find("end_header");
-  if (end_header == std::string_view::npos) throw Error("no 'end_header'", source);
-  std::size_t pos = text.find('\n', end_header);
-  if (pos == std::string_view::npos) throw Error("file ends after 'end_header'", source);
-  ++pos;
   const auto at = [&](std::size_t offset) { return fmt::format("{}: byte {}", source, offset); };
 
   struct Type {
@@ -239,9 +247,17 @@ void check_binary_ply(std::string_view text, const std::string& source) {
   };
   std::vector<Element> elements;
   bool big_endian = false;
-  Lines header(text.substr(0, end_header), source, '\0');
+  // Line by line, as CGAL reads the header: the data starts after the line "end_header" (a
+  // search for the text "end_header" also matched it inside another line).
+  Lines header(text, source, '\0');
   std::vector<std::string_view> t;
-  while (header.next(t)) {
+  std::size_t pos = 0;
+  while (true) {
+    if (!header.next(t)) header.fail_at_end("no 'end_header'");
+    if (t[0] == "end_header") {
+      pos = header.offset();
+      break;
+    }
     if (t[0] == "format") {
       if (t.size() < 2 || (t[1] != "binary_little_endian" && t[1] != "binary_big_endian"))
         header.fail(fmt::format("unknown PLY format '{}'", t.size() < 2 ? "" : t[1]));
@@ -329,10 +345,15 @@ void check_ascii_ply(std::string_view text, const std::string& source) {
     bool list = false;
   };
   std::vector<Element> elements;
+  bool have_format = false;
   while (true) {
     if (!in.next(t)) in.fail_at_end("no 'end_header'");
     if (t[0] == "end_header") break;
     if (t[0] == "format" && (t.size() < 2 || t[1] != "ascii")) return check_binary_ply(text, source);
+    if (t[0] == "format") have_format = true;
+    // CGAL's reader takes both of these on trust (a property with no element was undefined
+    // behaviour inside it), so the header is refused here.
+    if (t[0] == "property" && elements.empty()) in.fail("a property before any element");
     if (t[0] == "element") {
       if (t.size() < 3) in.fail("'element' needs a name and a count");
       elements.push_back({std::string(t[1]), in.index(t[2], 0, 1LL << 31, "an element count")});
@@ -344,6 +365,7 @@ void check_ascii_ply(std::string_view text, const std::string& source) {
       }
     }
   }
+  if (!have_format) in.fail("no 'format' line before 'end_header'");
   long long nv = 0;
   for (const Element& e : elements) {
     if (e.name == "vertex") nv = e.count;

@@ -1,5 +1,6 @@
 // Registration of the material families of paper 002 Table 1 (see docs/_parts/table1.md for
 // the formulas, the Lame parameters and the choices made where the extracted table is unclear).
+#include <cmath>
 #include <fmt/format.h>
 
 #include "sinew/core/error.hpp"
@@ -104,6 +105,31 @@ void register_isotropic_families(std::vector<MaterialInfo>& out) {
                  true,
                  [](const MaterialParameters& p) {
                    return std::make_unique<NeoHookeanOgden>(v(p, "lambda"), v(p, "mu"));
+                 }});
+
+  out.push_back({"neo_hookean_decoupled", "Neo-Hookean (decoupled; CalculiX, Abaqus, FEBio)",
+                 "CalculiX *HYPERELASTIC NEO HOOKE; Abaqus Theory Manual 4.6.1",
+                 "C10 (J^(-2/3) I_C - 3) + (J - 1)^2 / D1",
+                 {{"C10", 0.5, "deviatoric coefficient (mu_Lame = 2 C10)"},
+                  {"D1", 1.2, "volumetric compliance (bulk modulus K = 2 / D1)"}},
+                 {},
+                 {"C10", "D1"},
+                 false,  // lambda_Lame = 2/D1 - 4/3 C10: a mixture's zero bulk modulus has no D1
+                 true,
+                 [](const MaterialParameters& p) {
+                   const double D1 = v(p, "D1");
+                   // D1 > 0 is the physical range; normalisation may try others on its way.
+                   if (D1 == 0.0 || !std::isfinite(D1))
+                     throw Error(fmt::format("D1 must be finite and nonzero (D1 = 2 / bulk modulus), got {}", D1),
+                                 "parameter 'D1'");
+                   return std::make_unique<NeoHookeanDecoupled>(v(p, "C10"), D1);
+                 },
+                 // mu_Lame = 2 C10, K = lambda_Lame + 2/3 mu_Lame = 2 / D1.
+                 [](const MaterialParameters& p, const Lame& target) {
+                   MaterialParameters result = p;
+                   result.values["C10"] = 0.5 * target.mu;
+                   result.values["D1"] = 2.0 / (target.lambda + 2.0 / 3.0 * target.mu);
+                   return result;
                  }});
 
   out.push_back({"sts", "STS material", "paper 002 Table 1 (Pai et al. 2018)",

@@ -69,6 +69,17 @@ MaterialParameters normalize(const MaterialInfo& info, const MaterialParameters&
                 where);
   }
 
+  if (info.from_lame) {  // closed form, checked like an iterated answer
+    MaterialParameters result = info.from_lame(params, target);
+    const Lame l = lame_of(info, result);
+    if (!(std::abs(l.lambda - target.lambda) <= kAccept * scale && std::abs(l.mu - target.mu) <= kAccept * scale))
+      throw Error(fmt::format("the closed-form parameters give lambda_Lame = {:.6g}, mu_Lame = {:.6g}, not the target "
+                              "lambda_Lame = {:.6g}, mu_Lame = {:.6g}",
+                              l.lambda, l.mu, target.lambda, target.mu),
+                  where);
+    return result;
+  }
+
   // x: the unknowns; r(x): the Lamé residual restricted to the matched components.
   Eigen::Vector2d x = Eigen::Vector2d::Zero();
   for (int k = 0; k < n; ++k) x(k) = params.values.at(keys[k]);

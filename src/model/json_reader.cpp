@@ -128,12 +128,7 @@ std::string without_tag(const std::string& what) {
 
 }  // namespace
 
-nlohmann::json read_json_file(const std::filesystem::path& file, const std::string& kind) {
-  const std::string name = file.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw Error(fmt::format("is a directory, not a {} file", kind), name);
-  std::ifstream in(file);
-  if (!in) throw Error(fmt::format("cannot open {} file (missing or unreadable)", kind), name);
+nlohmann::json parse_json(std::istream& in, const std::string& name) {
   PathTracker tracker(name);
   try {
     return nlohmann::json::parse(in, std::ref(tracker));
@@ -145,6 +140,15 @@ nlohmann::json read_json_file(const std::filesystem::path& file, const std::stri
   } catch (const nlohmann::json::exception& e) {
     throw Error(fmt::format("malformed JSON: {}", without_tag(e.what())), name + ": " + tracker.path());
   }
+}
+
+nlohmann::json read_json_file(const std::filesystem::path& file, const std::string& kind) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw Error(fmt::format("is a directory, not a {} file", kind), name);
+  std::ifstream in(file);
+  if (!in) throw Error(fmt::format("cannot open {} file (missing or unreadable)", kind), name);
+  return parse_json(in, name);
 }
 
 JsonObject::JsonObject(const nlohmann::json& json, std::string file, std::string path)

@@ -47,7 +47,7 @@ Affine34 parse_matrix(JsonObject& key) {
   return A;
 }
 
-Bone parse_bone(JsonObject o) {
+Bone parse_bone(JsonObject o, std::vector<std::filesystem::path>& files) {
   o.allow({"name", "capsule", "mesh", "motion", "keys"});
   Bone bone;
   bone.name = o.string("name");
@@ -59,6 +59,7 @@ Bone parse_bone(JsonObject o) {
     if (mesh.is_relative()) mesh = std::filesystem::path(o.file()).parent_path() / mesh;
     try {
       bone.shape = load_mesh_bone(mesh);
+      files.push_back(mesh);
     } catch (const Error& e) {
       throw e.within(o.file() + ": " + o.path_of("mesh"));
     }
@@ -139,7 +140,7 @@ Rig parse_rig(JsonObject& o) {
   const std::string binding = o.choice("binding", {"hard", "springs"}, "hard");
   rig.binding = binding == "hard" ? BoneBinding::Hard : BoneBinding::Springs;
   if (rig.binding == BoneBinding::Springs) rig.spring_stiffness = o.positive("spring_stiffness");
-  for (JsonObject b : o.objects("bones")) rig.bones.push_back(parse_bone(b));
+  for (JsonObject b : o.objects("bones")) rig.bones.push_back(parse_bone(b, rig.files));
   if (rig.bones.empty()) o.fail("bones", "needs at least one bone");
   for (size_t i = 0; i < rig.bones.size(); ++i)
     for (size_t j = 0; j < i; ++j)
@@ -157,7 +158,9 @@ Rig parse_rig(const nlohmann::json& json, const std::filesystem::path& file, con
 
 Rig load_rig(const std::filesystem::path& file) {
   // The scene files' reader: duplicate keys and over-deep nesting are errors here too.
-  return parse_rig(read_json_file(file, "rig"), file, "");
+  Rig rig = parse_rig(read_json_file(file, "rig"), file, "");
+  rig.files.insert(rig.files.begin(), file);
+  return rig;
 }
 
 }  // namespace sinew

@@ -16,13 +16,12 @@
 #include "sinew/model/scene_surface.hpp"
 #include "scene_sections.hpp"
 #include "sinew/model/scene_rig.hpp"
+#include "sinew/motion/rig.hpp"
 #include "sinew/element/mesh_validation.hpp"
 #include "sinew/solver/preconditioner.hpp"
 
 namespace sinew {
 namespace {
-
-constexpr int kMaxFrames = 1000000;  // as for --frames
 
 int parse_axis(JsonObject& o, const std::string& key) {
   const std::string a = o.choice(key, {"x", "y", "z"}, "z");
@@ -353,6 +352,19 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
     throw e.within(name + ": /material");  // its context names the family and parameter
   }
   return scene;
+}
+
+std::vector<std::filesystem::path> scene_input_files(const Scene& scene) {
+  std::vector<std::filesystem::path> files;
+  if (const auto* f = std::get_if<MeshFile>(&scene.mesh.source)) files.push_back(f->path);
+  if (const auto* f = std::get_if<SurfaceVoxels>(&scene.mesh.source)) files.push_back(f->path);
+  if (const auto* f = std::get_if<SurfaceTetrahedra>(&scene.mesh.source)) files.push_back(f->path);
+  if (scene.mesh.embed) files.push_back(*scene.mesh.embed);
+  if (scene.rig) files.insert(files.end(), scene.rig->files.begin(), scene.rig->files.end());
+  std::vector<std::filesystem::path> unique;
+  for (const auto& f : files)
+    if (std::find(unique.begin(), unique.end(), f) == unique.end()) unique.push_back(f);
+  return unique;
 }
 
 Scene load_scene(const std::filesystem::path& file) {

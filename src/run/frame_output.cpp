@@ -57,6 +57,13 @@ void add_continuum_fields(const Model& model, const Eigen::VectorXd& x, VtuField
 FrameOutput::FrameOutput(const Scene& scene, const Model& model, std::filesystem::path out)
     : scene_(scene), model_(model), out_(std::move(out)), embedded_(scene, model.disc->mesh()) {}
 
+void FrameOutput::resume_after(int last_frame, const std::function<double(int)>& time_of) {
+  pvd_.clear();
+  if (!scene_.output.vtu) return;
+  for (int frame = 0; frame <= last_frame; frame += scene_.output.every)
+    pvd_.emplace_back(time_of(frame), fmt::format("frame_{:04d}.vtu", frame));
+}
+
 void FrameOutput::write(int frame, double time, const State& state) {
   if (out_.empty() || frame % scene_.output.every != 0) return;
   const VolumeMesh& mesh = model_.disc->mesh();

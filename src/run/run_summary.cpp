@@ -1,5 +1,8 @@
 #include "sinew/run/run_summary.hpp"
 
+#include <limits>
+
+#include "json_checks.hpp"
 #include "sinew/io/atomic_file.hpp"
 
 namespace sinew {
@@ -40,37 +43,52 @@ nlohmann::json frame_to_json(const FrameRecord& r) {
           {"failure", r.failure}};
 }
 
-FrameRecord frame_from_json(const nlohmann::json& j) {
+FrameRecord frame_from_json(const nlohmann::json& j, const std::string& path) {
+  using namespace json_checks;
+  constexpr long long kMaxCount = std::numeric_limits<int>::max();
+  auto at = [&](const char* key) -> const nlohmann::json& { return member(j, key, path); };
+  auto count = [&](const char* key) { return static_cast<int>(integer(at(key), 0, kMaxCount, path + "/" + key)); };
+  auto real = [&](const char* key) { return number(at(key), path + "/" + key); };
   FrameRecord r;
-  r.frame = j.at("frame");
-  r.time = j.at("time");
-  r.converged = j.at("converged");
-  r.newton_iterations = j.at("newton_iterations");
-  r.linear_iterations = j.at("linear_iterations");
-  r.substeps = j.at("substeps");
-  r.residual = j.at("residual");
-  r.force_scale = j.value("force_scale", 0.0);
-  r.energy = j.at("energy");
-  r.volume = j.at("volume");
-  r.min_J = j.at("min_J");
-  for (const auto& f : j.at("reactions")) r.reactions.emplace_back(f.at(0), f.at(1), f.at(2));
-  if (j.contains("external_force")) {
-    const auto& f = j.at("external_force");
-    r.external_force = Eigen::Vector3d(f.at(0), f.at(1), f.at(2));
+  r.frame = static_cast<int>(integer(at("frame"), 0, kMaxFrames, path + "/frame"));
+  r.time = real("time");
+  r.converged = boolean(at("converged"), path + "/converged");
+  r.newton_iterations = count("newton_iterations");
+  r.linear_iterations = count("linear_iterations");
+  r.substeps = count("substeps");
+  r.residual = real("residual");
+  r.force_scale = j.contains("force_scale") ? real("force_scale") : 0.0;
+  r.energy = real("energy");
+  r.volume = real("volume");
+  r.min_J = real("min_J");
+  const nlohmann::json& reactions = array(at("reactions"), path + "/reactions");
+  for (size_t i = 0; i < reactions.size(); ++i) {
+    const std::string where = fmt::format("{}/reactions/{}", path, i);
+    const nlohmann::json& f = array(reactions[i], where);
+    if (f.size() != 3) throw Error(fmt::format("must hold 3 numbers, got {}", f.size()), where);
+    r.reactions.emplace_back(number(f[0], where + "/0"), number(f[1], where + "/1"), number(f[2], where + "/2"));
   }
-  r.kinetic_energy = j.at("kinetic_energy");
-  r.potential_energy = j.at("potential_energy");
-  r.contacts = j.at("contacts");
-  r.max_penetration = j.at("max_penetration");
-  r.self_contacts = j.at("self_contacts");
-  r.self_penetration = j.at("self_penetration");
-  r.seconds = j.at("seconds");
-  r.assembly_seconds = j.at("assembly_seconds");
-  r.solve_seconds = j.at("solve_seconds");
+  if (j.contains("external_force")) {
+    const std::string where = path + "/external_force";
+    const nlohmann::json& f = array(at("external_force"), where);
+    if (f.size() != 3) throw Error(fmt::format("must hold 3 numbers, got {}", f.size()), where);
+    r.external_force = Eigen::Vector3d(number(f[0], where + "/0"), number(f[1], where + "/1"), number(f[2], where + "/2"));
+  }
+  r.kinetic_energy = real("kinetic_energy");
+  r.potential_energy = real("potential_energy");
+  r.contacts = count("contacts");
+  r.max_penetration = real("max_penetration");
+  r.self_contacts = count("self_contacts");
+  r.self_penetration = real("self_penetration");
+  r.seconds = real("seconds");
+  r.assembly_seconds = real("assembly_seconds");
+  r.solve_seconds = real("solve_seconds");
   // Stored by name: a counter named max_* is a maximum (StepStats::Counter).
-  for (const auto& [name, value] : j.at("counters").items())
-    r.counters.push_back({name, value.get<double>(), name.rfind("max_", 0) == 0});
-  r.failure = j.at("failure");
+  const nlohmann::json& counters = at("counters");
+  if (!counters.is_object()) throw Error(fmt::format("must be an object, got {}", kind(counters)), path + "/counters");
+  for (const auto& [name, value] : counters.items())
+    r.counters.push_back({name, number(value, path + "/counters/" + name), name.rfind("max_", 0) == 0});
+  r.failure = string(at("failure"), path + "/failure");
   return r;
 }
 

@@ -2,14 +2,15 @@
 
 #include <chrono>
 #include <fmt/format.h>
-#include <fstream>
+#include <optional>
 #include <regex>
-#include <sstream>
 
 #include "sinew/core/error.hpp"
 #include "sinew/io/atomic_file.hpp"
+#include "sinew/io/folder_lock.hpp"
 #include "sinew/model/model.hpp"
 #include "sinew/run/checkpoint.hpp"
+#include "sinew/run/frame_log.hpp"
 #include "sinew/run/frame_output.hpp"
 #include "sinew/run/run_summary.hpp"
 #include "sinew/run/selection_output.hpp"
@@ -22,17 +23,10 @@ bool RunSummary::all_converged() const {
   return true;
 }
 
-std::string scene_fingerprint(const Scene& scene) {
-  std::ifstream in(scene.file, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return fmt::format("{:016x}", std::hash<std::string>{}(ss.str()));
-}
-
 // A fresh run replaces the files an earlier run left in the folder (only the names Sinew
 // writes), so a shorter run does not leave stale frames behind.
 void remove_previous_outputs(const std::filesystem::path& out) {
-  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|simulation\.pvd|summary\.json|checkpoint\.json|selections\.json))");
+  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|simulation\.pvd|summary\.json|frames\.jsonl|checkpoint\.json|selections\.json))");
   std::error_code ec;
   if (!std::filesystem::is_directory(out, ec)) return;
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
@@ -116,53 +110,80 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   // ---- outputs and checkpoint
   const bool writing = !options.out_dir.empty();
   const std::filesystem::path& out = options.out_dir;
-  const std::string fingerprint = scene_fingerprint(scene);
+  const RunFingerprint fingerprint = writing ? fingerprint_run(scene) : RunFingerprint{};
   FrameOutput output(scene, model, writing ? out : std::filesystem::path());
+  // The folder is this run's alone until it returns (a second run into it is refused, naming
+  // this one's pid); temporary files a killed write left there go first.
+  std::optional<FolderLock> lock;
+  if (writing) {
+    // --resume without a checkpoint fails before the folder is created (read_checkpoint says so).
+    if (options.resume && !has_checkpoint(out)) read_checkpoint(out, fingerprint, integrator, state.x.size(), frames);
+    ensure_directory(out);
+    lock.emplace(out);
+    remove_stale_temporary_files(out);
+  }
+  auto frame_time = [&](int frame) { return integrator.dynamic() ? frame * integrator.frame_duration() : double(frame); };
   if (options.resume) {
-    Checkpoint c = read_checkpoint(out, fingerprint, integrator, state.x.size());
+    Checkpoint c = read_checkpoint(out, fingerprint, integrator, state.x.size(), frames);
+    summary.frames = read_frame_log(out, c.frame);
+    restore_integrator(integrator, c, out);
     state.x = std::move(c.state.x);
     if (integrator.dynamic()) state.v = std::move(c.state.v);
-    try {
-      integrator.restore_state(c.integrator_state, c.frame);
-    } catch (const nlohmann::json::exception& e) {
-      throw Error(fmt::format("corrupt checkpoint: {}", e.what()), (out / "checkpoint.json").string());
-    }
-    summary.frames = std::move(c.frames);
-    output.set_pvd(std::move(c.pvd));
+    output.resume_after(c.frame, frame_time);
     first_frame = c.frame + 1;
   } else if (writing) {
     remove_previous_outputs(out);
   }
-  if (writing) ensure_directory(out);
   if (writing && scene.output.selections) write_selections(out / "selections.json", scene, model);
-  auto frame_time = [&](int frame) { return integrator.dynamic() ? frame * integrator.frame_duration() : double(frame); };
+  // What is written per frame costs the same at frame 10 and at frame 100,000: the frame's
+  // files, one line of frames.jsonl, the checkpoint (the state alone). summary.json lists every
+  // frame, so it is rewritten only when the frame count has doubled since its last writing (at
+  // most twice the frames in all), at the end, and when the run stops on an error.
+  std::optional<FrameLog> log;
+  if (writing) log.emplace(out, summary.frames);
+  std::size_t summary_due = 1;
+  auto write_summary_now = [&] {
+    write_summary(out, scene, model, summary, frames);
+    summary_due = 2 * summary.frames.size();
+  };
   if (first_frame == 1) output.write(0, frame_time(0), state);
 
   // ---- one frame loop for every integrator
-  for (int frame = first_frame; frame <= frames; ++frame) {
-    const auto t_frame = Clock::now();
-    if (options.progress) options.progress({frame, frames, 0, 0.0, elapsed(), false, nullptr});
-    auto progress = [&](int iteration, double residual) {
-      if (options.progress) options.progress({frame, frames, iteration, residual, elapsed(), false, nullptr});
-    };
-    FrameRecord record;
-    static_cast<StepStats&>(record) = integrator.advance_frame(state, frame, progress);
-    record.frame = frame;
-    record.time = frame_time(frame);
-    measure(model, state, record);
-    record.seconds = std::chrono::duration<double>(Clock::now() - t_frame).count();
-    summary.frames.push_back(record);
-    output.write(frame, record.time, state);
-    if (writing) {
-      write_summary(out, scene, model, summary, frames);
-      // Only after a converged frame, so --resume never continues from a failed state.
-      if (record.converged)
-        write_checkpoint(out, fingerprint, integrator,
-                         {frame, state, integrator.checkpoint_state(), summary.frames, output.pvd()});
+  try {
+    for (int frame = first_frame; frame <= frames; ++frame) {
+      const auto t_frame = Clock::now();
+      if (options.progress) options.progress({frame, frames, 0, 0.0, elapsed(), false, nullptr});
+      auto progress = [&](int iteration, double residual) {
+        if (options.progress) options.progress({frame, frames, iteration, residual, elapsed(), false, nullptr});
+      };
+      FrameRecord record;
+      static_cast<StepStats&>(record) = integrator.advance_frame(state, frame, progress);
+      record.frame = frame;
+      record.time = frame_time(frame);
+      measure(model, state, record);
+      record.seconds = std::chrono::duration<double>(Clock::now() - t_frame).count();
+      summary.frames.push_back(record);
+      output.write(frame, record.time, state);
+      if (writing) {
+        log->append(record);
+        // Only after a converged frame, so --resume never continues from a failed state.
+        if (record.converged) write_checkpoint(out, fingerprint, integrator, {frame, state, integrator.checkpoint_state()});
+        if (summary.frames.size() >= summary_due) write_summary_now();
+      }
+      if (options.progress) options.progress({frame, frames, record.newton_iterations, record.residual, elapsed(), true, &summary.frames.back()});
+      if (!record.converged) break;  // later frames would start from an unsolved state
     }
-    if (options.progress) options.progress({frame, frames, record.newton_iterations, record.residual, elapsed(), true, &summary.frames.back()});
-    if (!record.converged) break;  // later frames would start from an unsolved state
+  } catch (...) {
+    // The frames before the error still get their summary; the error is what the caller sees.
+    if (writing) {
+      try {
+        write_summary_now();
+      } catch (...) {
+      }
+    }
+    throw;
   }
+  if (writing) write_summary_now();
   summary.x = state.x;
   return summary;
 }

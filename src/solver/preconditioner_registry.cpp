@@ -8,6 +8,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/solver/diagonal_preconditioners.hpp"
 #include "sinew/solver/lagged_cholesky_preconditioner.hpp"
+#include "sinew/solver/multigrid_preconditioner.hpp"
 #include "sinew/solver/preconditioner.hpp"
 
 namespace sinew {
@@ -29,6 +30,10 @@ class Registry {
                         }});
     entries_.push_back({"lagged_cholesky", "sparse Cholesky of an earlier matrix, refreshed when it no longer pays",
                         [] { return std::make_unique<LaggedCholeskyPreconditioner>(); }});
+    entries_.push_back({"multigrid",
+                        "geometric multigrid V-cycle on the coarsened lattice (Galerkin, Chebyshev smoothing); "
+                        "block_jacobi on meshes without a lattice grid",
+                        [] { return std::make_unique<MultigridPreconditioner>(); }});
   }
 
   void add(const std::string& name, const std::string& description, PreconditionerFactory factory) {

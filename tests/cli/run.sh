@@ -1,6 +1,6 @@
 # `sinew run`: output files, where-results line, progress (plain lines when stderr is not a
 # terminal, a live line when it is, nothing with --quiet), exit code 3 for a frame that did not
-# converge, --resume, and stale files of an earlier run.
+# converge, --resume, stale files of an earlier run, and two runs into one folder.
 source "$(dirname "$0")/common.bash"
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 SINEW=$(realpath "$SINEW")
@@ -32,10 +32,10 @@ grep -q "^frame 1/4 Newton 1 residual" "$TMP/err" || fail "no per-iteration line
 if grep -q $'\r\|\033' "$TMP/err"; then fail "terminal control characters in non-terminal output"; fi
 grep -q "^results in $TMP/a " "$TMP/out" || fail "no results line: $(cat "$TMP/out")"
 grep -q "^81 vertices, 32 elements, 4 frame(s)" "$TMP/out" || fail "no size line: $(cat "$TMP/out")"
-for f in simulation.pvd summary.json checkpoint.json frame_0000.vtu frame_0004.vtu surface_0000.obj surface_0004.obj; do
+for f in simulation.pvd summary.json frames.jsonl checkpoint.json frame_0000.vtu frame_0004.vtu surface_0000.obj surface_0004.obj; do
   [[ -s $TMP/a/$f ]] || fail "missing output $f"
 done
-if ls -A "$TMP/a" | grep -q -v -E '^(simulation\.pvd|summary\.json|checkpoint\.json|frame_000[0-4]\.vtu|surface_000[0-4]\.obj)$'; then
+if ls -A "$TMP/a" | grep -q -v -E '^(simulation\.pvd|summary\.json|frames\.jsonl|checkpoint\.json|frame_000[0-4]\.vtu|surface_000[0-4]\.obj)$'; then
   fail "unexpected files (temporaries left behind?): $(ls -A "$TMP/a")"
 fi
 grep -c "<DataSet " "$TMP/a/simulation.pvd" | grep -qx 5 || fail "simulation.pvd does not list 5 frames"
@@ -108,6 +108,21 @@ EOF
 run run "$TMP/hard.json" --out "$TMP/h2" --quiet
 [[ $RC -eq 3 && ! -s $TMP/out ]] || fail "--quiet non-converging run: exit $RC"
 grep -q "did not converge" "$TMP/err" || fail "--quiet hid the failure"
+
+# Two runs into one folder: the second is refused naming the folder and the first run's pid;
+# the first goes on and finishes. A killed run's lock does not outlive it.
+sed 's/"frames": 4/"frames": 100000/' "$TMP/bar.json" >"$TMP/long.json"
+"$SINEW" run "$TMP/long.json" --out "$TMP/shared" --quiet >/dev/null 2>&1 &
+first=$!
+for _ in $(seq 300); do [[ -s $TMP/shared/frame_0001.vtu ]] && break; sleep 0.1; done
+[[ -s $TMP/shared/frame_0001.vtu ]] || fail "the first run wrote no frame"
+expect_error "$TMP/shared: output folder is in use by another sinew run (pid $first)" run "$TMP/bar.json" --out "$TMP/shared"
+expect_error "(pid $first)" run "$TMP/long.json" --out "$TMP/shared" --resume
+kill -0 "$first" 2>/dev/null || fail "the first run did not go on"
+kill -KILL "$first"
+wait "$first" 2>/dev/null || true
+expect_ok run "$TMP/bar.json" --out "$TMP/shared" --quiet
+[[ ! -e $TMP/shared/.sinew.lock && ! -e $TMP/shared/frame_0005.vtu ]] || fail "lock or the killed run's frames left: $(ls -A "$TMP/shared")"
 
 # README command 1: the default scene, results under out/<scene name> of the working folder.
 mkdir -p "$TMP/cwd"

@@ -14,6 +14,12 @@ namespace sinew {
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& writer);
 
+// Removes the temporary files that writes into `dir` left behind when their process was killed
+// mid-write: names of the form .NAME.tmp-PID-N (this module's own) whose PID no longer runs, or
+// is this process's (call it before this process writes into `dir`). Other files are never
+// touched. Returns how many it removed; a sinew::Error names a file it cannot remove.
+int remove_stale_temporary_files(const std::filesystem::path& dir);
+
 // Creates `dir` and its missing parents; a sinew::Error names `dir` when it cannot be
 // created or exists as something other than a directory.
 void ensure_directory(const std::filesystem::path& dir);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "sinew/material/lame.hpp"
 #include "sinew/material/material.hpp"
 
 namespace sinew {
@@ -48,6 +49,10 @@ struct MaterialInfo {
   bool rest_stable = true;
   // Receives a complete, validated parameter set (defaults filled in).
   std::function<std::unique_ptr<Material>(const MaterialParameters&)> make;
+  // Optional: the normalized parameters in closed form from the target (lambda_Lame, mu_Lame),
+  // for families whose Lame parameters are far from affine in them (a compliance 1/K), where
+  // normalisation's Newton iteration would struggle. normalize() still checks the result.
+  std::function<MaterialParameters(const MaterialParameters&, const Lame&)> from_lame = {};
 };
 
 class MaterialCatalog {

@@ -12,6 +12,7 @@
 #include "sinew/material/families/hill.hpp"
 #include "sinew/material/families/mooney_rivlin.hpp"
 #include "sinew/material/families/neo_hookean.hpp"
+#include "sinew/material/families/neo_hookean_decoupled.hpp"
 #include "sinew/material/families/neo_hookean_filtered.hpp"
 #include "sinew/material/families/neo_hookean_ogden.hpp"
 #include "sinew/material/families/ogden.hpp"

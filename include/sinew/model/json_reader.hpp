@@ -4,6 +4,7 @@
 // e.g. "scene.json: /solver/newton/tolerance: must be a positive finite number, got -1".
 #include <Eigen/Core>
 #include <filesystem>
+#include <istream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -16,6 +17,8 @@ namespace sinew {
 // nesting deeper than 64 levels are errors, and every error names the file and, where known,
 // the JSON path. `kind` ("scene", "rig") words the missing-file message.
 nlohmann::json read_json_file(const std::filesystem::path& file, const std::string& kind);
+// The same for one JSON value read from a stream; `name` names it in errors.
+nlohmann::json parse_json(std::istream& in, const std::string& name);
 
 class JsonObject {
  public:

@@ -125,8 +125,16 @@ struct Scene {
   std::shared_ptr<const SelfContactSettings> self_contact;  // "self_contact" (scene_rig.hpp)
 };
 
+// The most frames a scene (or `sinew run --frames`) may ask for.
+constexpr int kMaxFrames = 1000000;
+
 Scene load_scene(const std::filesystem::path& file);
 Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file);
+
+// Every file the scene reads besides itself, resolved: the mesh file, the surface a mesh is
+// made from, the embedded surface, the rig file and bone meshes. A checkpoint fingerprints
+// them, so --resume notices when one changed.
+std::vector<std::filesystem::path> scene_input_files(const Scene& scene);
 
 // The mesh the scene describes (lattice generated or file read), validated.
 VolumeMesh build_scene_mesh(const Scene& scene);

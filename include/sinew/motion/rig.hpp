@@ -3,6 +3,7 @@
 // lattice kinematically (paper 000 §6, Torso and Hand). Production skinning rigs give noisy,
 // non-rigid and intersecting bone transforms; nothing here requires them to be clean.
 #include <Eigen/Geometry>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -49,6 +50,8 @@ struct Rig {
   std::vector<Bone> bones;
   BoneBinding binding = BoneBinding::Hard;
   double spring_stiffness = 0.0;  // N/m per bound vertex (Springs only)
+  // The files it was read from (the rig file, bone meshes): a checkpoint fingerprints them.
+  std::vector<std::filesystem::path> files;
 };
 
 // Applies x = A.leftCols<3>() X + A.col(3).

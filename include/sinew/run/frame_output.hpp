@@ -3,6 +3,8 @@
 // (frame_NNNN.vtu, listed in simulation.pvd), the boundary surface (surface_NNNN.obj) and the
 // embedded surface (embedded_surface_NNNN.obj|ply), every `output.every` frames.
 #include <filesystem>
+#include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -19,9 +21,9 @@ class FrameOutput {
 
   void write(int frame, double time, const State& state);
 
-  // simulation.pvd's (time, file) entries, kept in the checkpoint so a resumed run lists them all.
-  const std::vector<std::pair<double, std::string>>& pvd() const { return pvd_; }
-  void set_pvd(std::vector<std::pair<double, std::string>> entries) { pvd_ = std::move(entries); }
+  // A run resumed after `last_frame`: simulation.pvd lists the frames 0..last_frame the scene's
+  // output settings wrote, at time_of(frame), before the frames to come.
+  void resume_after(int last_frame, const std::function<double(int)>& time_of);
 
  private:
   const Scene& scene_;

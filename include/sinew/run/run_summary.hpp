@@ -4,6 +4,7 @@
 // measured on the frame's state; per run the model, the integrator and the totals.
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "sinew/model/model.hpp"
 #include "sinew/run/simulation.hpp"
@@ -11,7 +12,9 @@
 namespace sinew {
 
 nlohmann::json frame_to_json(const FrameRecord& record);
-FrameRecord frame_from_json(const nlohmann::json& json);  // throws nlohmann::json exceptions
+// Reads a record frame_to_json wrote, checking every value (the caller's file may be damaged or
+// edited); throws a sinew::Error naming the JSON path (`path` is the record's own).
+FrameRecord frame_from_json(const nlohmann::json& json, const std::string& path = "");
 
 // Writes out/summary.json atomically.
 void write_summary(const std::filesystem::path& out, const Scene& scene, const Model& model,

@@ -73,7 +73,4 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options);
 // Removes the files an earlier run wrote into out (frames, surfaces, pvd, summary, checkpoint).
 void remove_previous_outputs(const std::filesystem::path& out);
 
-// A hash of the scene file's bytes: a checkpoint resumes only the scene that wrote it.
-std::string scene_fingerprint(const Scene& scene);
-
 }  // namespace sinew

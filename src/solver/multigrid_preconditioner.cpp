@@ -1,0 +1,161 @@
+#include "sinew/solver/multigrid_preconditioner.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "sinew/core/error.hpp"
+#include "sinew/solver/serial_openmp.hpp"
+
+namespace sinew {
+
+// Level l: its operator (the Newton matrix on level 0, a Galerkin product below), free-DOF
+// mask, smoother, and the interpolation from level l + 1 with its symbolic Galerkin product.
+struct MultigridPreconditioner::Level {
+  Eigen::Index dofs = 0;
+  const LinearOperator* A = nullptr;
+  BlockSparseMatrix coarse_matrix;  // levels >= 1: the operator
+  std::vector<char> free;
+  ChebyshevSmoother smoother;
+  VertexInterpolation interpolation;  // from level l + 1 (not on the coarsest level)
+  GalerkinProduct galerkin;           // A_{l+1} = P^T A_l P
+  Eigen::VectorXd residual, coarse_b, coarse_x;
+};
+
+MultigridPreconditioner::MultigridPreconditioner(MultigridSettings settings) : settings_(settings) {}
+MultigridPreconditioner::~MultigridPreconditioner() = default;
+
+std::vector<Eigen::Index> MultigridPreconditioner::level_dofs() const {
+  std::vector<Eigen::Index> dofs;
+  for (const auto& level : levels_) dofs.push_back(level->dofs);
+  return dofs;
+}
+
+void MultigridPreconditioner::build_hierarchy(const VolumeMesh& mesh) {
+  LatticeHierarchy h = lattice_hierarchy(mesh, std::max<Eigen::Index>(1, settings_.coarsest_dofs / 3), settings_.max_levels);
+  levels_.clear();
+  for (size_t l = 0; l < h.levels.size(); ++l) {
+    auto level = std::make_unique<Level>();
+    level->dofs = 3 * h.levels[l].vertices();
+    if (l < h.interpolations.size()) level->interpolation = std::move(h.interpolations[l]);
+    levels_.push_back(std::move(level));
+  }
+  fine_outer_.clear();
+  fine_inner_.clear();
+  coarse_analysed_ = false;
+}
+
+void MultigridPreconditioner::setup(const LinearOperator& A, const SolverContext& context) {
+  const LatticeStructure* lattice = context.lattice();
+  if (!lattice) {  // no grid to coarsen: block-Jacobi
+    lattice_ = nullptr;
+    keep_.reset();
+    levels_.clear();
+    fallback_.setup(A, context);
+    return;
+  }
+  const Eigen::SparseMatrix<double>* matrix = A.matrix();
+  if (!matrix) throw Error("needs the assembled matrix (use block_jacobi with a matrix-free operator)", "preconditioner multigrid");
+  const VolumeMesh& mesh = context.discretization->mesh();
+  if (A.rows() != 3 * mesh.num_vertices())
+    throw Error(fmt::format("the matrix has {} rows, the lattice {} DOFs", A.rows(), 3 * mesh.num_vertices()),
+                "preconditioner multigrid");
+  if (lattice_ != context.discretization.get()) {
+    build_hierarchy(mesh);
+    lattice_ = context.discretization.get();
+    keep_ = context.discretization;
+  }
+
+  // Symbolic products again when the matrix's pattern changed (contacts come and go).
+  const bool same_pattern = static_cast<Eigen::Index>(fine_outer_.size()) == matrix->outerSize() + 1 &&
+                            static_cast<Eigen::Index>(fine_inner_.size()) == matrix->nonZeros() &&
+                            matrix->isCompressed() &&
+                            std::equal(fine_outer_.begin(), fine_outer_.end(), matrix->outerIndexPtr()) &&
+                            std::equal(fine_inner_.begin(), fine_inner_.end(), matrix->innerIndexPtr());
+  Eigen::SparseMatrix<double> compressed;
+  const Eigen::SparseMatrix<double>* fine = matrix;
+  if (!matrix->isCompressed()) {
+    compressed = *matrix;
+    compressed.makeCompressed();
+    fine = &compressed;
+  }
+  if (!same_pattern) {
+    std::vector<std::vector<int>> pattern = block_pattern(*fine);
+    for (size_t l = 0; l + 1 < levels_.size(); ++l) {
+      Level& L = *levels_[l];
+      L.galerkin = GalerkinProduct(pattern, L.interpolation);
+      levels_[l + 1]->coarse_matrix = L.galerkin.make_coarse();
+      pattern = block_pattern(levels_[l + 1]->coarse_matrix);
+    }
+    fine_outer_.assign(fine->outerIndexPtr(), fine->outerIndexPtr() + fine->outerSize() + 1);
+    fine_inner_.assign(fine->innerIndexPtr(), fine->innerIndexPtr() + fine->nonZeros());
+    coarse_analysed_ = false;
+  }
+
+  // Numeric: free masks, coarse operators, smoothers.
+  Level& L0 = *levels_[0];
+  L0.A = &A;
+  L0.free.assign(static_cast<size_t>(A.rows()), 1);
+  for (Eigen::Index i = 0; i < A.rows(); ++i)
+    if (context.is_fixed(i)) L0.free[static_cast<size_t>(i)] = 0;
+  for (size_t l = 0; l < levels_.size(); ++l) {
+    Level& L = *levels_[l];
+    if (l > 0) {
+      Level& F = *levels_[l - 1];
+      L.free = F.interpolation.coarse_free(F.free);
+      if (l == 1)
+        F.galerkin.compute(*fine, F.free, L.free, L.coarse_matrix);
+      else
+        F.galerkin.compute(F.coarse_matrix, F.free, L.free, L.coarse_matrix);
+      L.A = &L.coarse_matrix;
+    }
+    if (l + 1 < levels_.size()) L.smoother.setup(*L.A, L.free, settings_.smoother);
+  }
+
+  // Coarsest level: CHOLMOD, shifted slightly if round-off left it singular.
+  const Level& C = *levels_.back();
+  const Eigen::SparseMatrix<double> lower =
+      levels_.size() == 1 ? Eigen::SparseMatrix<double>(fine->triangularView<Eigen::Lower>()) : C.coarse_matrix.lower_triangle();
+  const SerialOpenMpScope serial_cholmod;
+  if (!coarse_analysed_) {
+    coarse_llt_.analyzePattern(lower);
+    coarse_analysed_ = true;
+  }
+  double shift = 0.0;
+  for (int attempt = 0; attempt < 6; ++attempt) {
+    coarse_llt_.setShift(shift);
+    coarse_llt_.factorize(lower);
+    if (coarse_llt_.info() == Eigen::Success) return;
+    const double diag = lower.diagonal().cwiseAbs().maxCoeff();
+    shift = shift == 0.0 ? 1e-10 * diag : shift * 100.0;
+  }
+  throw Error("the coarsest level could not be factorised", "preconditioner multigrid");
+}
+
+void MultigridPreconditioner::cycle(size_t l, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  Level& L = *levels_[l];
+  if (l + 1 == levels_.size()) {
+    const SerialOpenMpScope serial_cholmod;
+    x = coarse_llt_.solve(b);
+    return;
+  }
+  Level& next = *levels_[l + 1];
+  L.smoother.smooth(b, x, /*zero_start=*/true);
+  L.A->apply(x, L.residual);
+  L.residual = b - L.residual;
+  L.interpolation.restrict_to(L.residual, L.free, L.coarse_b);
+  cycle(l + 1, L.coarse_b, L.coarse_x);
+  L.interpolation.prolong(L.coarse_x, L.free, x, /*add=*/true);
+  L.smoother.smooth(b, x, /*zero_start=*/false);
+  (void)next;
+}
+
+void MultigridPreconditioner::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  if (!lattice_) {
+    fallback_.apply(r, z);
+    return;
+  }
+  cycle(0, r, z);
+}
+
+}  // namespace sinew

@@ -1,0 +1,331 @@
+// Geometric multigrid on lattices: the coarsened lattices interpolate linear functions exactly
+// (partially filled coarse cells included), keep non-manifold copies apart and merge corners
+// shared through a face; the Galerkin product equals the explicit triple product P^T A P over
+// the free DOFs; the V-cycle is a symmetric positive definite preconditioner; and PCG's
+// iteration count stays bounded as the lattice grows at nu = 0.49, where block-Jacobi's grows.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <map>
+
+#include "io_test_support.hpp"
+#include "sinew/assembly/problem.hpp"
+#include "sinew/forms/elastic_form.hpp"
+#include "sinew/linalg/galerkin_product.hpp"
+#include "sinew/material/families/corotational.hpp"
+#include "sinew/mesh/lattice.hpp"
+#include "sinew/mesh/selection.hpp"
+#include "sinew/solver/lattice_hierarchy.hpp"
+#include "sinew/solver/multigrid_preconditioner.hpp"
+#include "sinew/solver/pcg_solver.hpp"
+
+namespace sinew {
+namespace {
+
+using test::error_message;
+using test::expect_contains;
+
+// P applied to a function given at the coarse vertices, evaluated at fine vertex v.
+Eigen::Vector3d interpolate(const VertexInterpolation& P, int v, const std::vector<Eigen::Vector3d>& coarse) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int k = P.offsets[static_cast<size_t>(v)]; k < P.offsets[static_cast<size_t>(v) + 1]; ++k)
+    sum += P.weight[static_cast<size_t>(k)] * coarse[static_cast<size_t>(P.coarse[static_cast<size_t>(k)])];
+  return sum;
+}
+
+// The coarse level's grid points in fine grid units: interpolating them must give each fine
+// vertex its own grid point (trilinear interpolation is exact for linear functions).
+void expect_linear_exactness(const LatticeLevel& fine, const LatticeLevel& coarse, const VertexInterpolation& P) {
+  std::vector<Eigen::Vector3d> position(coarse.vertex_point.size());
+  for (size_t c = 0; c < position.size(); ++c) position[c] = 2.0 * coarse.vertex_point[c].cast<double>();
+  ASSERT_EQ(P.fine_vertices(), fine.vertices());
+  for (int v = 0; v < fine.vertices(); ++v) {
+    double sum = 0.0;
+    for (int k = P.offsets[static_cast<size_t>(v)]; k < P.offsets[static_cast<size_t>(v) + 1]; ++k) sum += P.weight[static_cast<size_t>(k)];
+    EXPECT_NEAR(sum, 1.0, 1e-14) << "vertex " << v;
+    EXPECT_LE((interpolate(P, v, position) - fine.vertex_point[static_cast<size_t>(v)].cast<double>()).norm(), 1e-12)
+        << "vertex " << v;
+  }
+}
+
+TEST(LatticeHierarchy, BoxCoarsensByTwoAndInterpolatesLinearFunctions) {
+  // 5 x 4 x 3 cells: the last coarse layer along x and z is half filled.
+  const VolumeMesh box = box_lattice(Eigen::Vector3d::Zero(), Eigen::Vector3d(5, 4, 3), Eigen::Vector3i(5, 4, 3));
+  const LatticeLevel fine = lattice_level(box);
+  VertexInterpolation P;
+  const LatticeLevel coarse = coarsen(fine, P);
+  EXPECT_EQ(coarse.cell.size(), 3u * 2u * 2u);
+  EXPECT_EQ(coarse.vertices(), 4 * 3 * 3);
+  expect_linear_exactness(fine, coarse, P);
+  VertexInterpolation P2;
+  const LatticeLevel coarser = coarsen(coarse, P2);
+  EXPECT_EQ(coarser.cell.size(), 2u * 1u * 1u);
+  EXPECT_EQ(coarser.vertices(), 3 * 2 * 2);
+  expect_linear_exactness(coarse, coarser, P2);
+  // The hierarchy stops at the vertex budget.
+  const LatticeHierarchy h = lattice_hierarchy(box, 40, 10);
+  ASSERT_EQ(h.levels.size(), 2u);
+  EXPECT_EQ(h.levels[1].vertices(), 36);
+  EXPECT_EQ(lattice_hierarchy(box, 1, 10).levels.size(), 4u);  // down to a single coarse cell
+  EXPECT_EQ(lattice_hierarchy(box, 1, 10).levels.back().vertices(), 8);
+}
+
+// Two cells of one coarse cell that touch along the edge x = y = 1, with that edge's two
+// vertices shared (`glued`) or duplicated (non-manifold copies).
+VolumeMesh edge_pair(bool glued) {
+  VolumeMesh m;
+  LatticeStructure g;
+  g.cells = Eigen::Vector3i(2, 2, 1);
+  g.spacing = Eigen::Vector3d::Ones();
+  g.non_manifold = !glued;
+  const std::array<Eigen::Vector3i, 8> corner = {Eigen::Vector3i(0, 0, 0), Eigen::Vector3i(1, 0, 0), Eigen::Vector3i(1, 1, 0),
+                                                 Eigen::Vector3i(0, 1, 0), Eigen::Vector3i(0, 0, 1), Eigen::Vector3i(1, 0, 1),
+                                                 Eigen::Vector3i(1, 1, 1), Eigen::Vector3i(0, 1, 1)};
+  std::vector<Eigen::Vector3i> points;
+  std::vector<int> copies;
+  std::map<std::array<int, 4>, int> index;
+  m.elements.resize(2, 8);
+  g.element_cell.resize(2, 3);
+  const Eigen::Vector3i cells[2] = {Eigen::Vector3i(0, 0, 0), Eigen::Vector3i(1, 1, 0)};
+  for (int e = 0; e < 2; ++e) {
+    g.element_cell.row(e) = cells[e].transpose();
+    for (int a = 0; a < 8; ++a) {
+      const Eigen::Vector3i p = cells[e] + corner[static_cast<size_t>(a)];
+      const int copy = (!glued && e == 1 && p(0) == 1 && p(1) == 1) ? 1 : 0;
+      const std::array<int, 4> key{p(0), p(1), p(2), copy};
+      auto [it, added] = index.emplace(key, static_cast<int>(points.size()));
+      if (added) {
+        points.push_back(p);
+        copies.push_back(copy);
+      }
+      m.elements(e, a) = it->second;
+    }
+  }
+  m.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
+  g.vertex_point.resize(static_cast<Eigen::Index>(points.size()), 3);
+  g.vertex_copy.resize(static_cast<Eigen::Index>(points.size()));
+  for (size_t v = 0; v < points.size(); ++v) {
+    m.vertices.row(static_cast<Eigen::Index>(v)) = points[v].cast<double>().transpose();
+    g.vertex_point.row(static_cast<Eigen::Index>(v)) = points[v].transpose();
+    g.vertex_copy(static_cast<Eigen::Index>(v)) = copies[v];
+  }
+  m.lattice = g;
+  m.validate("edge pair");
+  return m;
+}
+
+TEST(LatticeHierarchy, NonManifoldCopiesGetCoarseCellsOfTheirOwn) {
+  const VolumeMesh split = edge_pair(false), glued = edge_pair(true);
+  EXPECT_EQ(split.num_vertices(), glued.num_vertices() + 2);
+  VertexInterpolation Ps, Pg;
+  const LatticeLevel fs = lattice_level(split), fg = lattice_level(glued);
+  const LatticeLevel cs = coarsen(fs, Ps), cg = coarsen(fg, Pg);
+  EXPECT_EQ(cs.cell.size(), 2u);  // one coarse cell per copy
+  EXPECT_EQ(cs.vertices(), 16);
+  EXPECT_EQ(cg.cell.size(), 1u);
+  EXPECT_EQ(cg.vertices(), 8);
+  expect_linear_exactness(fs, cs, Ps);
+  expect_linear_exactness(fg, cg, Pg);
+  // No coarse vertex of the split pair interpolates to both cells.
+  std::vector<int> owner(16, -1);
+  for (int e = 0; e < 2; ++e)
+    for (int v : fs.corners[static_cast<size_t>(e)])
+      for (int k = Ps.offsets[static_cast<size_t>(v)]; k < Ps.offsets[static_cast<size_t>(v) + 1]; ++k) {
+        int& o = owner[static_cast<size_t>(Ps.coarse[static_cast<size_t>(k)])];
+        EXPECT_TRUE(o < 0 || o == e);
+        o = e;
+      }
+}
+
+TEST(LatticeHierarchy, CellsJoinedThroughAFaceShareCoarseCorners) {
+  // Cells 1 and 2 along x lie in different coarse cells and share the face x = 2.
+  const VolumeMesh bar = occupancy_lattice(Eigen::AlignedBox3d(Eigen::Vector3d::Zero(), Eigen::Vector3d(4, 1, 1)),
+                                           Eigen::Vector3i(4, 1, 1), [](const Eigen::Vector3d& c) { return c.x() > 1 && c.x() < 3; });
+  ASSERT_EQ(bar.num_elements(), 2);
+  VertexInterpolation P;
+  const LatticeLevel fine = lattice_level(bar);
+  const LatticeLevel coarse = coarsen(fine, P);
+  EXPECT_EQ(coarse.cell.size(), 2u);
+  EXPECT_EQ(coarse.vertices(), 12);  // 2 x 8 corners, the 4 on the shared face once
+  expect_linear_exactness(fine, coarse, P);
+}
+
+TEST(LatticeHierarchy, RejectsMeshesWithoutALattice) {
+  VolumeMesh m = box_lattice(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), Eigen::Vector3i(2, 2, 2));
+  m.lattice.reset();
+  expect_contains(error_message([&] { lattice_level(m); }), {"multigrid", "no lattice grid"});
+}
+
+// The Hessian of a linear co-rotational lattice (E = 1000) at rest, the vertices up to
+// `pinned_height` pinned, one DOF of the top face fixed on its own (a partly fixed vertex).
+struct Bar {
+  std::shared_ptr<Discretization> disc;
+  std::unique_ptr<Problem> problem;
+  Eigen::VectorXd x;
+  std::vector<char> fixed;
+  Bar(const Eigen::Vector3i& cells, double nu, double pinned_height = 0.0) {
+    disc = std::make_shared<Discretization>(box_lattice(Eigen::Vector3d::Zero(), cells.cast<double>(), cells));
+    problem = std::make_unique<Problem>(disc->mesh().num_vertices());
+    const double E = 1e3, lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+    problem->add_form(std::make_shared<ElasticForm>(disc, std::make_shared<LinearCorotational>(lambda, mu)));
+    problem->set_discretization(disc);
+    x = disc->mesh().rest_positions();
+    fixed.assign(static_cast<size_t>(x.size()), 0);
+    for (Eigen::Index v = 0; v < disc->mesh().num_vertices(); ++v)
+      if (disc->mesh().vertices(v, 2) <= pinned_height)
+        for (int i = 0; i < 3; ++i) fixed[static_cast<size_t>(3 * v + i)] = 1;
+    const std::vector<int> top =
+        select_vertices(disc->mesh().vertices, PlaneSelector{{0, 0, static_cast<double>(cells(2))}, {0, 0, 1}}, "top");
+    fixed[static_cast<size_t>(3 * top.front() + 1)] = 1;
+    problem->set_fixed(fixed);
+  }
+  SolverContext context() const { return {disc, problem->fixed()}; }
+  Eigen::VectorXd rhs() const {
+    Eigen::VectorXd b(x.size());
+    for (Eigen::Index i = 0; i < b.size(); ++i) b(i) = fixed[static_cast<size_t>(i)] ? 0.0 : std::cos(0.37 * static_cast<double>(i));
+    return b;
+  }
+};
+
+// P with fixed fine DOFs dropped, as a scalar sparse matrix.
+Eigen::SparseMatrix<double> masked_interpolation(const VertexInterpolation& P, const std::vector<char>& free) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int v = 0; v < P.fine_vertices(); ++v)
+    for (int k = P.offsets[static_cast<size_t>(v)]; k < P.offsets[static_cast<size_t>(v) + 1]; ++k)
+      for (int i = 0; i < 3; ++i)
+        if (free[static_cast<size_t>(3 * v + i)])
+          t.emplace_back(3 * v + i, 3 * P.coarse[static_cast<size_t>(k)] + i, P.weight[static_cast<size_t>(k)]);
+  Eigen::SparseMatrix<double> M(3 * P.fine_vertices(), 3 * P.coarse_vertices);
+  M.setFromTriplets(t.begin(), t.end());
+  return M;
+}
+
+Eigen::MatrixXd dense(const BlockSparseMatrix& C) {
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(C.rows(), C.rows());
+  for (int r = 0; r < static_cast<int>(C.block_rows()); ++r)
+    for (int k = C.row_begin(r); k < C.row_end(r); ++k) D.block<3, 3>(3 * r, 3 * C.column(k)) = C.block(k);
+  return D;
+}
+
+TEST(GalerkinProduct, EqualsTheExplicitTripleProductOverTheFreeDofs) {
+  Bar bar(Eigen::Vector3i(5, 4, 3), 0.45, 1.0);  // two layers pinned: coarse vertices at z = 0 have no free DOF
+  const Eigen::SparseMatrix<double>& A = *bar.problem->hessian(bar.x).matrix();
+  const LatticeHierarchy h = lattice_hierarchy(bar.disc->mesh(), 1, 3);
+  ASSERT_EQ(h.levels.size(), 3u);
+  std::vector<char> free0(bar.fixed.size());
+  for (size_t i = 0; i < free0.size(); ++i) free0[i] = bar.fixed[i] ? 0 : 1;
+  const VertexInterpolation& P0 = h.interpolations[0];
+  const std::vector<char> free1 = P0.coarse_free(free0);
+  const GalerkinProduct g0(block_pattern(A), P0);
+  EXPECT_GT(g0.colors(), 1);
+  BlockSparseMatrix C1 = g0.make_coarse();
+  g0.compute(A, free0, free1, C1);
+  const Eigen::SparseMatrix<double> M0 = masked_interpolation(P0, free0);
+  Eigen::MatrixXd expected = Eigen::MatrixXd(M0.transpose() * A * M0);
+  int identity_rows = 0;
+  for (Eigen::Index i = 0; i < expected.rows(); ++i)
+    if (!free1[static_cast<size_t>(i)]) {
+      expected(i, i) = 1.0;
+      ++identity_rows;
+    }
+  EXPECT_GT(identity_rows, 0);  // coarse DOFs on the pinned face only
+  EXPECT_LE((dense(C1) - expected).norm(), 1e-12 * expected.norm());
+  EXPECT_LE((dense(C1) - dense(C1).transpose()).norm(), 1e-12 * expected.norm());
+
+  // The next level from the block matrix, the same way.
+  const VertexInterpolation& P1 = h.interpolations[1];
+  const std::vector<char> free2 = P1.coarse_free(free1);
+  const GalerkinProduct g1(block_pattern(C1), P1);
+  BlockSparseMatrix C2 = g1.make_coarse();
+  g1.compute(C1, free1, free2, C2);
+  const Eigen::SparseMatrix<double> M1 = masked_interpolation(P1, free1);
+  Eigen::MatrixXd expected2 = M1.transpose() * dense(C1) * M1;
+  for (Eigen::Index i = 0; i < expected2.rows(); ++i)
+    if (!free2[static_cast<size_t>(i)]) expected2(i, i) = 1.0;
+  EXPECT_LE((dense(C2) - expected2).norm(), 1e-12 * expected2.norm());
+  // The block product agrees with the scalar one.
+  const Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(C2.rows(), -1.0, 2.0);
+  Eigen::VectorXd y;
+  C2.apply(u, y);
+  EXPECT_LE((y - expected2 * u).norm(), 1e-12 * (expected2 * u).norm());
+}
+
+TEST(MultigridPreconditioner, IsSymmetricPositiveDefinite) {
+  Bar bar(Eigen::Vector3i(6, 5, 7), 0.49);
+  const LinearOperator& H = bar.problem->hessian(bar.x);
+  MultigridSettings settings;
+  settings.coarsest_dofs = 30;  // several levels on a small lattice
+  MultigridPreconditioner M(settings);
+  M.setup(H, bar.context());
+  EXPECT_GE(M.levels(), 3);
+  Eigen::VectorXd u = bar.rhs(), v(u.size()), Mu, Mv;
+  for (Eigen::Index i = 0; i < v.size(); ++i) v(i) = bar.fixed[static_cast<size_t>(i)] ? 0.0 : std::sin(1.3 * static_cast<double>(i));
+  M.apply(u, Mu);
+  M.apply(v, Mv);
+  EXPECT_NEAR(u.dot(Mv), v.dot(Mu), 1e-10 * u.norm() * Mv.norm());
+  EXPECT_GT(u.dot(Mu), 0.0);
+  EXPECT_GT(v.dot(Mv), 0.0);
+  for (Eigen::Index i = 0; i < u.size(); ++i)
+    if (bar.fixed[static_cast<size_t>(i)]) {
+      EXPECT_EQ(Mu(i), 0.0) << "fixed DOF " << i;  // no correction moves a fixed DOF
+    }
+}
+
+TEST(MultigridPreconditioner, IterationsStayBoundedAsTheLatticeGrows) {
+  // nu = 0.49, each size twice the last: multigrid's PCG iterations barely change while
+  // block-Jacobi's grow with the mesh.
+  std::vector<int> mg, bj;
+  for (int n : {4, 8, 16}) {
+    Bar bar(Eigen::Vector3i(n, n, 2 * n), 0.49);
+    const LinearOperator& H = bar.problem->hessian(bar.x);
+    const Eigen::VectorXd b = bar.rhs();
+    MultigridSettings settings;
+    settings.coarsest_dofs = 200;  // at least two levels at every size
+    PcgSolver pcg_mg(std::make_unique<MultigridPreconditioner>(settings), 5000);
+    PcgSolver pcg_bj(make_preconditioner("block_jacobi"), 5000);
+    Eigen::VectorXd x, Ax;
+    const LinearSolveReport r = pcg_mg.solve(H, b, x, 1e-8, bar.context());
+    ASSERT_TRUE(r.converged) << n;
+    H.apply(x, Ax);
+    EXPECT_LE((Ax - b).norm(), 1.01e-8 * b.norm());
+    EXPECT_GE(dynamic_cast<MultigridPreconditioner&>(pcg_mg.preconditioner()).levels(), 2);
+    mg.push_back(r.iterations);
+    bj.push_back(pcg_bj.solve(H, b, x, 1e-8, bar.context()).iterations);
+    std::printf("n = %d (%d hexahedra): multigrid %d, block_jacobi %d PCG iterations to 1e-8\n", n, 2 * n * n * n,
+                mg.back(), bj.back());
+  }
+  EXPECT_LE(mg[2], mg[1] + 5);
+  EXPECT_GT(bj[2], 2 * mg[2]);
+  EXPECT_GT(bj[2], bj[1]);
+}
+
+TEST(MultigridPreconditioner, IsBlockJacobiWithoutALatticeAndNeedsTheMatrix) {
+  Bar bar(Eigen::Vector3i(3, 3, 3), 0.3);
+  const LinearOperator& H = bar.problem->hessian(bar.x);
+  const Eigen::VectorXd r = bar.rhs();
+  MultigridPreconditioner M;
+  auto bj = make_preconditioner("block_jacobi");
+  const SolverContext bare{nullptr, bar.problem->fixed()};
+  M.setup(H, bare);
+  bj->setup(H, bare);
+  Eigen::VectorXd z1, z2;
+  M.apply(r, z1);
+  bj->apply(r, z2);
+  EXPECT_EQ(M.levels(), 1);
+  EXPECT_LE((z1 - z2).norm(), 1e-15 * z2.norm());
+  // With a lattice it needs the assembled matrix.
+  class MatrixFree final : public LinearOperator {
+   public:
+    explicit MatrixFree(const LinearOperator& A) : A_(A) {}
+    Eigen::Index rows() const override { return A_.rows(); }
+    void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override { A_.apply(x, y); }
+    Mat3 diagonal_block(Eigen::Index v) const override { return A_.diagonal_block(v); }
+
+   private:
+    const LinearOperator& A_;
+  };
+  expect_contains(error_message([&] { M.setup(MatrixFree(H), bar.context()); }), {"multigrid", "assembled matrix"});
+}
+
+}  // namespace
+}  // namespace sinew
