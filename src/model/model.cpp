@@ -73,6 +73,7 @@ void build_boundary(const Scene& scene, Model& m) {
   const std::string file = scene.file.string();
   const VolumeMesh& mesh = m.disc->mesh();
   std::vector<int>& owner = m.boundary_owner;
+  m.kinematics = std::make_shared<std::vector<KinematicCondition>>();
   owner.assign(mesh.num_vertices(), -1);
   for (size_t i = 0; i < scene.boundary.size(); ++i) {
     const auto& b = scene.boundary[i];
@@ -85,7 +86,7 @@ void build_boundary(const Scene& scene, Model& m) {
         throw Error(fmt::format("vertex {} is also selected by /boundary/{} with a different motion", v, owner[v]), where);
       if (owner[v] < 0) owner[v] = static_cast<int>(i);
     }
-    m.kinematics.push_back(std::move(c));
+    m.kinematics->push_back(std::move(c));
   }
 }
 
@@ -105,7 +106,7 @@ std::shared_ptr<PenaltyContactForm> penalty_contact(const Scene& scene, const Mo
 
 void Model::prescribe(double frame, Eigen::VectorXd& x, std::vector<char>& fixed) const {
   const Eigen::MatrixX3d& rest = disc->mesh().vertices;
-  apply_kinematics(kinematics, rest, frame, x, fixed);
+  apply_kinematics(*kinematics, rest, frame, x, fixed);
   rig.apply(frame, rest, x, fixed);
 }
 
@@ -142,10 +143,10 @@ Model build_model(const Scene& scene) {
   build_boundary(scene, m);
   m.rig = make_scene_rig(scene, mesh, *m.problem);  // bone springs and self-contact forms
   m.initial.x = mesh.rest_positions();
-  // Captures copies: the model is returned by value.
+  // Captures copies (the model is returned by value), but shares the boundary conditions.
   PrescribedMotion motion = [kinematics = m.kinematics, rest = mesh.vertices, rig = m.rig](
                                 double frame, Eigen::VectorXd& x, std::vector<char>& fixed) {
-    apply_kinematics(kinematics, rest, frame, x, fixed);
+    apply_kinematics(*kinematics, rest, frame, x, fixed);
     rig.apply(frame, rest, x, fixed);
   };
 

@@ -289,6 +289,10 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   return scene;
 }
 
+RigidMotion motion_from_json(const nlohmann::json& json, const std::string& context) {
+  return parse_motion(JsonObject(json, context));
+}
+
 Scene load_scene(const std::filesystem::path& file) {
   const nlohmann::json json = read_json_file(file, "scene");
   return parse_scene(json, file);

@@ -32,7 +32,9 @@ struct Model {
   std::shared_ptr<Problem> problem;
   BoundarySurface surface;
   Eigen::VectorXd external_forces;  // constant nodal forces: gravity, point loads, tractions
-  std::vector<KinematicCondition> kinematics;  // the scene's boundary conditions, in order
+  // The scene's boundary conditions, in order; shared with the integrator's prescribed motion, so
+  // a motion changed here between frames (run/session.hpp) moves the vertices from then on.
+  std::shared_ptr<std::vector<KinematicCondition>> kinematics;
   std::vector<int> boundary_owner;  // per vertex: the first boundary entry selecting it, or -1
   SceneRig rig;
   std::shared_ptr<PenaltyContactForm> contact;  // obstacles as penalty contact (not energy-limited)

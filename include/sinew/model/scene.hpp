@@ -108,6 +108,9 @@ struct Scene {
 };
 
 Scene load_scene(const std::filesystem::path& file);
+// A boundary or obstacle motion in the scene's JSON form ({"type": "translate", "per_frame": [0,
+// 0, 1]}), checked as the scene reader checks it; errors name `context` and the field.
+RigidMotion motion_from_json(const nlohmann::json& json, const std::string& context);
 Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file);
 
 // The mesh the scene describes (lattice generated or file read), validated.
