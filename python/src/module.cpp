@@ -33,7 +33,7 @@ PYBIND11_MODULE(_sinew, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const sinew::Error& e) {
-      py::object instance = error(one_line(e.what()));
+      py::object instance = py::reinterpret_borrow<py::object>(error)(one_line(e.what()));
       instance.attr("message") = e.message();
       instance.attr("context") = e.context();
       PyErr_SetObject(error.ptr(), instance.ptr());
