@@ -34,8 +34,8 @@ double Session::time() const {
 }
 
 const FrameRecord& Session::step(const IterationProgress& progress) {
-  ++frame_;
-  summary_.frames.push_back(simulate_frame(model_, state_, frame_, progress));
+  summary_.frames.push_back(simulate_frame(model_, state_, frame_ + 1, progress));
+  ++frame_;  // only now: an exception (Ctrl-C in a progress callback) leaves the frame count
   summary_.x = state_.x;
   const FrameRecord& record = summary_.frames.back();
   if (!out_.empty()) {
