@@ -43,7 +43,7 @@ __all__ = [
 
 def load_scene(path):
     """Reads a scene file (the same as Scene.load)."""
-    return Scene.load(str(path))
+    return Scene.load(path)
 
 
 def material(family, *, E=None, nu=None, alpha=None, functions=None, **parameters):

