@@ -32,6 +32,11 @@ from ._sinew import (
     young_poisson,
 )
 
+# Errors and reprs say sinew.Error, sinew.Material, ... (where users meet them), not sinew._sinew.
+for _name in ("Error", "FrameRecord", "Material", "Mesh", "Progress", "RunSummary", "Scene", "Simulation", "Surface"):
+    globals()[_name].__module__ = __name__
+del _name
+
 __all__ = [
     "Error", "FrameRecord", "Material", "Mesh", "Progress", "RunSummary", "Scene", "Simulation",
     "Surface", "__version__", "box", "cylinder", "lambda_part_parameters", "lame_from_young_poisson",
