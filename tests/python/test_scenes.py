@@ -3,6 +3,8 @@ prints them, runs to a folder, frame-by-frame stepping with boundary motions and
 between frames, and results as arrays."""
 import copy
 import json
+import os
+import signal
 import subprocess
 import threading
 import time
@@ -215,3 +217,20 @@ def test_long_calls_release_the_gil():
     # Were the GIL held during the run, this thread would stand still for all of it.
     assert alone > 0.05
     assert np.max(np.diff(ticks)) < 0.5 * alone
+
+
+def test_ctrl_c_stops_a_run():
+    data = stretch_scene(cells=(12, 6, 6))
+    data["boundary"][1]["motion"]["per_frame"] = [0.02, 0, 0]
+    data["frames"] = 1
+    start = time.perf_counter()
+    sinew.run(sinew.Scene.from_dict(data))
+    one_frame = time.perf_counter() - start
+    data["frames"] = 100
+    timer = threading.Timer(0.2, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        sinew.run(sinew.Scene.from_dict(data))
+    timer.join()
+    assert time.perf_counter() - start < 0.2 + 20 * one_frame  # not the 100 frames
