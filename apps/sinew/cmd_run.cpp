@@ -1,4 +1,4 @@
-// `sinew run SCENE.json [--out DIR] [--frames N] [--threads N] [--quiet] [--resume]`.
+// `sinew run SCENE.json [--out DIR] [--frames N] [--threads N] [--quiet] [--resume] [--strict]`.
 #include "cmd_run.hpp"
 
 #include <algorithm>
@@ -17,7 +17,7 @@ namespace {
 
 struct Options {
   std::string scene, out, frames, threads;
-  bool quiet = false, resume = false;
+  bool quiet = false, resume = false, strict = false;
 };
 
 void run(const Options& o, int& exit_code) {
@@ -36,6 +36,9 @@ void run(const Options& o, int& exit_code) {
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(t));
   }
   ro.resume = o.resume;
+  ro.strict = o.strict;
+  // Warnings are printed even with --quiet: they are about the answer, not the progress.
+  ro.warning = [](const std::string& w) { fmt::print(stderr, "sinew: warning: {}\n", w); };
   const bool tty = isatty(STDERR_FILENO);
   if (!o.quiet) {
     // Energy-limited dynamics (paper 001) has no Newton iterations: it reports its SQP and PGS
@@ -92,6 +95,7 @@ Command add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)");
   cmd->add_flag("--quiet", opts->quiet, "no progress output");
   cmd->add_flag("--resume", opts->resume, "continue from the output folder's checkpoint");
+  cmd->add_flag("--strict", opts->strict, "treat warnings (e.g. a selector taking every vertex) as errors");
   return {cmd, [opts, &exit_code] {
             try {
               run(*opts, exit_code);

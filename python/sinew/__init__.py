@@ -15,6 +15,7 @@ from ._sinew import (
     Progress,
     RunSummary,
     Scene,
+    SceneWarning,
     Simulation,
     Surface,
     __version__,
@@ -38,7 +39,7 @@ for _name in ("Error", "FrameRecord", "Material", "Mesh", "Progress", "RunSummar
 del _name
 
 __all__ = [
-    "Error", "FrameRecord", "Material", "Mesh", "Progress", "RunSummary", "Scene", "Simulation",
+    "Error", "FrameRecord", "Material", "Mesh", "Progress", "RunSummary", "Scene", "SceneWarning", "Simulation",
     "Surface", "__version__", "box", "cylinder", "lambda_part_parameters", "lame_from_young_poisson",
     "load_scene", "material", "materials", "metrics", "mix", "mu_part_parameters", "normalize",
     "read_mesh", "read_surface", "rotation", "run", "set_threads", "sphere", "tetrahedralize",
@@ -136,4 +137,5 @@ def metrics(frames):
     out = {key: np.array([getattr(f, key) for f in frames]) for key in _METRICS}
     nb = len(frames[0].reactions) if frames else 0
     out["reactions"] = np.array([f.reactions for f in frames]).reshape(len(frames), nb, 3)
+    out["external_force"] = np.array([f.external_force for f in frames]).reshape(len(frames), 3)
     return out

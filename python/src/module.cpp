@@ -40,6 +40,11 @@ PYBIND11_MODULE(_sinew, m) {
     }
   });
 
+  // The model's warnings (a selector taking every vertex, ...): what the CLI prints as "warning:".
+  m.attr("SceneWarning") = py::reinterpret_steal<py::object>(
+      PyErr_NewExceptionWithDoc("sinew.SceneWarning", "Suspicious but legal scene input (the CLI's warnings).",
+                                PyExc_UserWarning, nullptr));
+
   m.def(
       "set_threads",
       [](int threads) {

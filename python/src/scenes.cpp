@@ -35,6 +35,13 @@ struct Progress {
   std::optional<FrameRecord> record;
 };
 
+// A model warning as a Python warning (sinew.SceneWarning); with the GIL held. Raises if the
+// warnings filter turns it into an error.
+void warn(const std::string& message) {
+  static py::object category = py::module_::import("sinew._sinew").attr("SceneWarning");
+  if (PyErr_WarnEx(category.ptr(), message.c_str(), 2) != 0) throw py::error_already_set();
+}
+
 py::object scene_object(Scene scene, const nlohmann::json& data) {
   py::object object = py::cast(std::make_shared<Scene>(std::move(scene)));
   object.attr("data") = from_json(data);
@@ -162,6 +169,8 @@ is the JSON as a dict: change a copy and build a new scene with Scene.from_dict.
       .def_readonly("self_penetration", &FrameRecord::self_penetration)
       .def_property_readonly("reactions", [](const FrameRecord& r) { return reactions_array(r.reactions); },
                              "(boundary conditions, 3): the force each boundary condition exerts on the body.")
+      .def_property_readonly("external_force", [](const FrameRecord& r) { return vector3(r.external_force); },
+                             "The sum of the loads at this frame's amplitudes.")
       .def_property_readonly("counters",
                              [](const FrameRecord& r) {
                                py::dict d;
@@ -184,6 +193,7 @@ is the JSON as a dict: change a copy and build a new scene with Scene.from_dict.
       .def_property_readonly("positions", [](const RunSummary& s) { return positions_array(s.x); },
                              "Final positions (vertices, 3).")
       .def_property_readonly("all_converged", &RunSummary::all_converged)
+      .def_readonly("warnings", &RunSummary::warnings, "The model's warnings (also issued as sinew.SceneWarning).")
       .def("__repr__", [](const RunSummary& s) {
         return fmt::format("<sinew.RunSummary {} vertices, {} elements, {} frames{}>", s.vertices, s.elements,
                            s.frames.size(), s.all_converged() ? "" : ", not converged");
@@ -201,7 +211,7 @@ is the JSON as a dict: change a copy and build a new scene with Scene.from_dict.
   m.def(
       "run",
       [](const Scene& scene, const std::optional<std::filesystem::path>& out, const std::optional<int>& frames, bool resume,
-         const py::object& progress) {
+         const py::object& progress, bool strict) {
         RunOptions options;
         if (out) options.out_dir = *out;
         if (frames) {
@@ -210,6 +220,11 @@ is the JSON as a dict: change a copy and build a new scene with Scene.from_dict.
           options.frames = *frames;
         }
         options.resume = resume;
+        options.strict = strict;
+        options.warning = [](const std::string& message) {
+          py::gil_scoped_acquire gil;
+          warn(message);
+        };
         const py::handle callback = progress;
         options.progress = [callback](const ProgressEvent& e) {
           python_callback(callback, [&] {
@@ -222,22 +237,30 @@ is the JSON as a dict: change a copy and build a new scene with Scene.from_dict.
         return run_scene(scene, options);
       },
       py::arg("scene"), py::arg("out") = py::none(), py::arg("frames") = py::none(), py::arg("resume") = false,
-      py::arg("progress") = py::none(),
+      py::arg("progress") = py::none(), py::arg("strict") = false,
       "Runs a scene as `sinew run` does: with `out`, writes its outputs there (frames, surfaces, "
       "simulation.pvd, summary.json, checkpoint; `resume` continues from the checkpoint), without it writes "
       "nothing. `frames` overrides the scene's frame count; `progress(event)` is called at every Newton "
-      "iteration and frame end. Ctrl-C stops the run (KeyboardInterrupt).");
+      "iteration and frame end. The model's warnings are issued as sinew.SceneWarning (errors with `strict`, "
+      "like --strict). Ctrl-C stops the run (KeyboardInterrupt).");
 
   py::class_<Session>(m, "Simulation", R"(A scene stepped frame by frame: read the state between frames, change boundary
 motions or external forces, step again. Positions and other state arrays are copies (their values
 at the time of the call), shaped (vertices, 3).)")
-      .def(py::init([](const Scene& scene, const std::optional<std::filesystem::path>& out) {
-             py::gil_scoped_release release;
-             return std::make_unique<Session>(scene, out.value_or(std::filesystem::path()));
+      .def(py::init([](const Scene& scene, const std::optional<std::filesystem::path>& out, bool strict) {
+             std::unique_ptr<Session> s;
+             {
+               py::gil_scoped_release release;
+               s = std::make_unique<Session>(scene, out.value_or(std::filesystem::path()), strict);
+             }
+             for (const auto& w : s->summary().warnings) warn(w);
+             return s;
            }),
-           py::arg("scene"), py::arg("out") = py::none(),
-           "Builds the scene's model (every input error is a sinew.Error here). With `out`, frame 0 and every "
-           "stepped frame's outputs and summary.json are written there, as by `sinew run` (no checkpoint).")
+           py::arg("scene"), py::arg("out") = py::none(), py::arg("strict") = false,
+           "Builds the scene's model (every input error is a sinew.Error here; its warnings are issued as "
+           "sinew.SceneWarning, errors with `strict`). With `out`, frame 0 and every stepped frame's outputs and "
+           "summary.json are written there, as by `sinew run` (no checkpoint).")
+      .def_property_readonly("warnings", [](const Session& s) { return s.summary().warnings; })
       .def(
           "step",
           [](Session& s, const py::object& progress) {
@@ -341,8 +364,9 @@ at the time of the call), shaped (vertices, 3).)")
             s.set_external_forces(
                 positions_vector(FloatArray::ensure(forces), s.model().disc->mesh().num_vertices(), "external_forces"));
           },
-          "The constant external force on each vertex (vertices, 3): gravity, point loads and tractions as the "
-          "scene gave them; assign to change them from the next frame on.")
+          "The external force on each vertex (vertices, 3) at the current frame: gravity, point loads and "
+          "tractions at their amplitudes; assign constant forces to replace them (and their amplitudes) from "
+          "the next frame on.")
       .def("__repr__", [](const Session& s) {
         return fmt::format("<sinew.Simulation {} at frame {}>", s.scene().file.string(), s.frame());
       });

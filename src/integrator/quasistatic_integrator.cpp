@@ -34,6 +34,7 @@ StepStats QuasistaticIntegrator::advance_frame(State& state, int frame, const It
     stats.assembly_seconds += r.assembly_seconds;
     stats.solve_seconds += r.solve_seconds;
     stats.residual = r.residual;
+    stats.force_scale = r.force_scale;
     stats.energy = r.energy;
     if (r.converged) {
       x = trial;

@@ -10,14 +10,17 @@
 
 namespace sinew {
 
-Session::Session(Scene scene, std::filesystem::path out_dir)
+Session::Session(Scene scene, std::filesystem::path out_dir, bool strict)
     : scene_(std::move(scene)), model_(build_model(scene_)), out_(std::move(out_dir)) {
+  if (strict && !model_.warnings.empty())  // as run_scene
+    throw Error(model_.warnings.front() + " (a warning, an error with --strict)");
   state_ = model_.initial;
   const Discretization& disc = *model_.disc;
   summary_.vertices = disc.mesh().num_vertices();
   summary_.elements = disc.num_elements();
   for (Eigen::Index e = 0; e < disc.num_elements(); ++e) summary_.rest_volume += disc.rest_volume(e);
   summary_.external_force = model_.external_forces.reshaped(3, model_.external_forces.size() / 3).rowwise().sum();
+  summary_.warnings = model_.warnings;
   summary_.x = state_.x;
   output_ = std::make_unique<FrameOutput>(scene_, model_, out_);
   if (!out_.empty()) {
@@ -73,20 +76,24 @@ void Session::move_boundary(size_t index, const RigidTransform& target) {
   set_boundary_motion(index, std::move(keys));
 }
 
+Eigen::VectorXd Session::external_forces() const { return model_.external_forces_at(frame_); }
+
 void Session::set_external_forces(const Eigen::VectorXd& forces) {
   if (forces.size() != model_.external_forces.size())
     throw Error(fmt::format("need {} values (3 per vertex), got {}", model_.external_forces.size(), forces.size()),
                 "external forces");
   if (!forces.allFinite()) throw Error("must be finite", "external forces");
+  // One constant load replaces the scene's loads and their amplitudes. The prescribed motion sets
+  // the load form from the shared loads at every solve; a scene without loads had no load form,
+  // so one is added (its forces then stay as set here).
+  *model_.loads = {ScaledLoad{forces, Amplitude::constant()}};
   model_.external_forces = forces;
   summary_.external_force = forces.reshaped(3, forces.size() / 3).rowwise().sum();
-  for (const auto& form : model_.problem->forms()) {
-    if (auto external = std::dynamic_pointer_cast<ExternalForceForm>(form)) {
-      external->forces() = forces;
-      return;
-    }
+  if (!model_.load_form) {
+    model_.load_form = std::make_shared<ExternalForceForm>(forces);
+    model_.problem->add_form(model_.load_form);
   }
-  model_.problem->add_form(std::make_shared<ExternalForceForm>(forces));
+  model_.load_form->forces() = forces;
 }
 
 }  // namespace sinew

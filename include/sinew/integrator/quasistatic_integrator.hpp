@@ -26,6 +26,7 @@ class QuasistaticIntegrator final : public Integrator {
   std::string name() const override { return "quasistatic"; }
   std::string description() const override { return "quasistatic load stepping"; }
   bool dynamic() const override { return false; }
+  std::string convergence_test() const override { return describe_convergence_test(newton_); }
   StepStats advance_frame(State& state, int frame, const IterationProgress& progress) override;
 
  private:

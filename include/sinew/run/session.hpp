@@ -18,8 +18,9 @@ class Session {
   // Builds and validates the model (every input problem is a sinew::Error here). With `out_dir`,
   // an earlier run's files there are replaced and each frame's outputs (frame_output.hpp, frame 0
   // at once) and summary.json are written as in run_scene; there is no checkpoint, since the
-  // motions may have been changed by the caller.
-  explicit Session(Scene scene, std::filesystem::path out_dir = {});
+  // motions may have been changed by the caller. The model's warnings are in summary().warnings;
+  // `strict` makes the first one an error, as run_scene's option does.
+  explicit Session(Scene scene, std::filesystem::path out_dir = {}, bool strict = false);
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
@@ -44,9 +45,10 @@ class Session {
   // Where boundary condition `index` puts its vertices at a frame number (relative to the rest pose).
   RigidTransform boundary_transform(size_t index, double frame) const;
 
-  // The constant external nodal forces (x[3 v + i] layout): gravity, point loads, tractions as
-  // the scene gave them, replaced from the next frame on by set_external_forces.
-  const Eigen::VectorXd& external_forces() const { return model_.external_forces; }
+  // The external nodal forces (x[3 v + i] layout) at the current frame: gravity, point loads and
+  // tractions at their amplitudes as the scene gave them, or what set_external_forces set.
+  Eigen::VectorXd external_forces() const;
+  // Constant forces that replace the scene's loads (and their amplitudes) from the next frame on.
   void set_external_forces(const Eigen::VectorXd& forces);
 
  private:
