@@ -25,7 +25,7 @@ Scene bar(const std::string& element = "hex") {
       {"name": "right", "select": {"plane": {"point": [1, 0, 0], "normal": [1, 0, 0]}},
        "motion": {"type": "translate", "per_frame": [0.1, 0, 0]}}
     ],
-    "solver": {"newton": {"tolerance": 1e-8}},
+    "solver": {"newton": {"convergence": "absolute", "tolerance": 1e-8}},
     "frames": 2
   })");
   j["mesh"]["element"] = element;

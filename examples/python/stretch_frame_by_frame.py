@@ -26,7 +26,7 @@ SCENE = {
         {"name": "left", "select": {"plane": {"point": [0, 0, 0], "normal": [-1, 0, 0]}}},
         {"name": "right", "select": {"plane": {"point": [LENGTH, 0, 0], "normal": [1, 0, 0]}}},
     ],
-    "solver": {"newton": {"tolerance": 1e-6}},
+    "solver": {"newton": {"residual_tolerance": 1e-8}},
 }
 
 

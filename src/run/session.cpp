@@ -56,6 +56,8 @@ const KinematicCondition& Session::condition(size_t index) const {
 
 void Session::set_boundary_motion(size_t index, RigidMotion motion) {
   const std::string where = condition(index).source;
+  // A displacement written without an amplitude ramps to the scene's last frame, as in the scene.
+  if (auto* d = std::get_if<Displacement>(&motion)) d->amplitude.resolve_ramp(scene_.frames);
   validate_motion(motion, where);
   (*model_.kinematics)[index].motion = std::move(motion);
 }

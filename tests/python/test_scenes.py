@@ -25,7 +25,7 @@ def stretch_scene(element="hex", cells=(4, 2, 2)):
             {"name": "right", "select": {"plane": {"point": [2, 0, 0], "normal": [1, 0, 0]}},
              "motion": {"type": "translate", "per_frame": [0.1, 0, 0]}},
         ],
-        "solver": {"newton": {"tolerance": 1e-8}},
+        "solver": {"newton": {"convergence": "absolute", "tolerance": 1e-8}},
         "frames": 2,
     }
 
@@ -130,6 +130,10 @@ def test_motions_set_as_dicts_and_their_errors():
     sim.step()
     right = sim.boundary_vertices(1)
     np.testing.assert_allclose(sim.displacements[right, 0], 0.05)
+    # A displacement without an amplitude ramps to the scene's last frame (2).
+    sim.set_boundary_motion("right", {"type": "displace", "displacement": [0.3, 0, 0]})
+    sim.step()
+    np.testing.assert_allclose(sim.displacements[right, 0], 0.3)
     with pytest.raises(sinew.Error) as e:
         sim.set_boundary_motion("right", {"type": "translate"})
     assert str(e.value) == "boundary 'right' motion: /per_frame: required field is missing"
@@ -234,3 +238,17 @@ def test_ctrl_c_stops_a_run():
         sinew.run(sinew.Scene.from_dict(data))
     timer.join()
     assert time.perf_counter() - start < 0.2 + 20 * one_frame  # not the 100 frames
+
+
+def test_warnings_and_strict():
+    data = stretch_scene()
+    data["boundary"] = [{"name": "all", "select": {"box": {"min": [-1, -1, -1], "max": [3, 3, 3]}}}]
+    with pytest.warns(sinew.SceneWarning, match="selects every vertex"):
+        sim = sinew.Simulation(sinew.Scene.from_dict(data))
+    assert any("selects every vertex" in w for w in sim.warnings)
+    with pytest.warns(sinew.SceneWarning):
+        result = sinew.run(sinew.Scene.from_dict(data))
+    assert result.warnings == sim.warnings
+    for make in (lambda s: sinew.run(s, strict=True), lambda s: sinew.Simulation(s, strict=True)):
+        with pytest.raises(sinew.Error, match=r"\(a warning, an error with --strict\)$"):
+            make(sinew.Scene.from_dict(data))

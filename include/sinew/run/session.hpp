@@ -37,7 +37,8 @@ class Session {
   const FrameRecord& step(const IterationProgress& progress = {});
 
   // Boundary condition `index` (scene order) follows `motion` from the next frame on; motions are
-  // functions of the frame number, relative to the rest pose (docs/scene-format.md).
+  // functions of the frame number, relative to the rest pose (docs/scene-format.md). Only the
+  // components the condition prescribes move (a roller's own stay free).
   void set_boundary_motion(size_t index, RigidMotion motion);
   // Boundary condition `index` reaches `target` (relative to its rest pose) at the end of the next
   // frame, from where it is now (a keyframed motion), and holds it afterwards.
