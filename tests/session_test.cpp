@@ -98,6 +98,28 @@ TEST(Session, ExternalForcesChangedBetweenFramesAreBalancedByTheSupports) {
   const Eigen::Vector3d total = f.reshaped(3, f.size() / 3).rowwise().sum();
   EXPECT_LT((r.reactions[0] + total).norm(), 1e-5 * total.norm());
   EXPECT_LT((session.summary().external_force - total).norm(), 1e-12);
+  EXPECT_LT((r.external_force - total).norm(), 1e-12);
+}
+
+TEST(Session, ExternalForcesReplaceTheScenesRampedLoads) {
+  json j = json::parse(R"({
+    "mesh": {"box": {"min": [0, 0, 0], "max": [1, 0.25, 0.25]}, "cells": [6, 2, 2]},
+    "material": {"family": "stable_neo_hookean", "E": 1e5, "nu": 0.45},
+    "boundary": [{"name": "wall", "select": {"plane": {"point": [0, 0, 0], "normal": [-1, 0, 0]}}}],
+    "loads": {"point": [{"select": {"box": {"min": [1, 0, 0], "max": [1, 0.25, 0.25]}}, "force": [0, 0, -5],
+                         "amplitude": "ramp"}]},
+    "frames": 4
+  })");
+  Session session(parse_scene(j, "ramp.json"));
+  EXPECT_NEAR(session.step().external_force.z(), -5 * 9 / 4.0, 1e-12);  // 9 tip vertices, 1/4 of the ramp
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(session.external_forces().size());
+  f(3 * 5 + 1) = 2.0;  // one vertex, sideways
+  session.set_external_forces(f);
+  const FrameRecord& r = session.step();
+  ASSERT_TRUE(r.converged);
+  EXPECT_LT((r.external_force - Eigen::Vector3d(0, 2, 0)).norm(), 1e-12);  // the ramp no longer applies
+  EXPECT_LT((r.reactions[0] + Eigen::Vector3d(0, 2, 0)).norm(), 1e-5);
+  EXPECT_LT((session.external_forces() - f).norm(), 1e-15);
 }
 
 TEST(ElementStresses, AreThoseOfTheMaterialOnTetrahedra) {
