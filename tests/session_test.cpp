@@ -118,7 +118,7 @@ TEST(Session, ExternalForcesReplaceTheScenesRampedLoads) {
   const FrameRecord& r = session.step();
   ASSERT_TRUE(r.converged);
   EXPECT_LT((r.external_force - Eigen::Vector3d(0, 2, 0)).norm(), 1e-12);  // the ramp no longer applies
-  EXPECT_LT((r.reactions[0] + Eigen::Vector3d(0, 2, 0)).norm(), 1e-5);
+  EXPECT_LT((r.reactions[0] + Eigen::Vector3d(0, 2, 0)).norm(), 1e-4);
   EXPECT_LT((session.external_forces() - f).norm(), 1e-15);
 }
 
