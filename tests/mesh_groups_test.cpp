@@ -114,9 +114,9 @@ TEST(MeshGroups, SceneSelectsBoundaryAndLoadsByGroup) {
     SCOPED_TRACE(file);
     const Model m = build_model(parse_scene(group_scene(file), "dir/scene.json"));
     const VolumeMesh& mesh = m.disc->mesh();
-    ASSERT_EQ(m.kinematics.size(), 2u);
-    EXPECT_EQ(m.kinematics[0].vertices, where(mesh, [](auto p) { return p.x() == 0; }));
-    EXPECT_EQ(m.kinematics[1].vertices, where(mesh, [](auto p) { return p.z() == 0; }));
+    ASSERT_EQ(m.kinematics->size(), 2u);
+    EXPECT_EQ((*m.kinematics)[0].vertices, where(mesh, [](auto p) { return p.x() == 0; }));
+    EXPECT_EQ((*m.kinematics)[1].vertices, where(mesh, [](auto p) { return p.z() == 0; }));
     ASSERT_EQ(m.pressures.size(), 1u);
     EXPECT_EQ(m.pressures[0]->faces().size(), mesh.kind == ElementKind::Hex8 ? 1u : 2u);
     EXPECT_NEAR(m.external_forces.sum(), -4.0, 1e-12);  // 4 vertices of group 7

@@ -38,7 +38,7 @@ TEST(SelectionOutput, ListsTheVerticesAndFacesOfEveryConditionAndLoad) {
   EXPECT_EQ(j["boundary"][0]["name"], "wall");
   EXPECT_EQ(j["boundary"][0]["path"], "/boundary/0");
   const std::vector<int> wall = j["boundary"][0]["vertices"];
-  EXPECT_EQ(wall, model.kinematics[0].vertices);
+  EXPECT_EQ(wall, (*model.kinematics)[0].vertices);
   EXPECT_EQ(wall.size(), 9u);
   for (int v : wall) EXPECT_EQ(mesh.vertices(v, 0), 0.0);
   EXPECT_EQ(j["boundary"][1]["vertices"], json({3, 7}));

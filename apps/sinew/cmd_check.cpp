@@ -148,7 +148,7 @@ void check(const Options& o, int& exit_code) {
     for (int split = 0; split <= kMaxMotionSplits; ++split, fraction *= 0.5) {
       x = x_n;
       std::vector<char> fixed(x.size(), 0);
-      apply_kinematics(model.kinematics, mesh.vertices, fraction, x, fixed);
+      apply_kinematics(*model.kinematics, mesh.vertices, fraction, x, fixed);
       model.rig.apply(fraction, mesh.vertices, x, fixed);
       if (all_valid(problem, x)) break;
     }

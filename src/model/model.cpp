@@ -100,6 +100,7 @@ void build_boundary(const Scene& scene, Model& m) {
   const VolumeMesh& mesh = m.disc->mesh();
   const Eigen::Index n = mesh.num_vertices();
   m.dof_owner.assign(3 * n, -1);
+  m.kinematics = std::make_shared<std::vector<KinematicCondition>>();
   struct Prescribed {
     Eigen::Vector3d direction;
     int condition;
@@ -147,7 +148,7 @@ void build_boundary(const Scene& scene, Model& m) {
       next_direction:;
       }
     }
-    m.kinematics.push_back(std::move(c));
+    m.kinematics->push_back(std::move(c));
   }
   // Owners of global DOFs, and rotated frames where some direction is not an axis.
   std::vector<std::pair<int, Mat3>> frames;
@@ -215,7 +216,7 @@ std::shared_ptr<PenaltyContactForm> penalty_contact(const Scene& scene, const Mo
 
 void Model::prescribe(double frame, Eigen::VectorXd& x, std::vector<char>& fixed) const {
   const Eigen::MatrixX3d& rest = disc->mesh().vertices;
-  apply_kinematics(kinematics, rest, frame, x, fixed);
+  apply_kinematics(*kinematics, rest, frame, x, fixed);
   rig.apply(frame, rest, x, fixed);
   mark_frame_dofs(vertex_frames, fixed);
 }
@@ -254,7 +255,7 @@ Eigen::VectorXd external_forces(const Scene& scene, const Discretization& disc, 
   return f;
 }
 
-Eigen::VectorXd Model::external_forces_at(double frame) const { return loads_at(loads, disc->num_dofs(), frame); }
+Eigen::VectorXd Model::external_forces_at(double frame) const { return loads_at(*loads, disc->num_dofs(), frame); }
 
 Model build_model(const Scene& scene) {
   const std::string file = scene.file.string();
@@ -268,10 +269,10 @@ Model build_model(const Scene& scene) {
   m.problem->add_form(m.elastic);
   m.surface = boundary_surface(mesh);
   m.problem->set_scales(problem_scales(mesh, m.material.lame));
-  m.loads = scene_loads(scene, *m.disc, m.surface);
+  m.loads = std::make_shared<std::vector<ScaledLoad>>(scene_loads(scene, *m.disc, m.surface));
   m.external_forces = Eigen::VectorXd::Zero(m.disc->num_dofs());
-  for (const auto& l : m.loads) m.external_forces += l.forces;
-  if (!m.loads.empty()) {
+  for (const auto& l : *m.loads) m.external_forces += l.forces;
+  if (!m.loads->empty()) {
     m.load_form = std::make_shared<ExternalForceForm>(m.external_forces_at(1.0));
     m.problem->add_form(m.load_form);
   }
@@ -280,15 +281,15 @@ Model build_model(const Scene& scene) {
   m.rig = make_scene_rig(scene, mesh, *m.problem);  // bone springs and self-contact forms
   m.initial.x = mesh.rest_positions();
   // Everything that depends on the frame number: prescribed positions and the loads' amplitudes.
-  // Captures copies: the model is returned by value.
+  // Captures copies (the model is returned by value); the conditions and loads are shared.
   PrescribedMotion motion = [kinematics = m.kinematics, rest = mesh.vertices, rig = m.rig, loads = m.loads,
                              load_form = m.load_form, frames = m.vertex_frames, pressures = m.pressures,
                              pressure_amplitudes = m.pressure_amplitudes](double frame, Eigen::VectorXd& x,
                                                                           std::vector<char>& fixed) {
-    apply_kinematics(kinematics, rest, frame, x, fixed);
+    apply_kinematics(*kinematics, rest, frame, x, fixed);
     rig.apply(frame, rest, x, fixed);
     mark_frame_dofs(frames, fixed);
-    if (load_form) load_form->forces() = loads_at(loads, x.size(), frame);
+    if (load_form) load_form->forces() = loads_at(*loads, x.size(), frame);
     for (size_t i = 0; i < pressures.size(); ++i) pressures[i]->set_scale(pressure_amplitudes[i].at(frame));
   };
 

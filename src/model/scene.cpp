@@ -367,6 +367,10 @@ std::vector<std::filesystem::path> scene_input_files(const Scene& scene) {
   return unique;
 }
 
+RigidMotion motion_from_json(const nlohmann::json& json, const std::string& context) {
+  return parse_motion(JsonObject(json, context));
+}
+
 Scene load_scene(const std::filesystem::path& file) {
   const nlohmann::json json = read_json_file(file, "scene");
   return parse_scene(json, file);

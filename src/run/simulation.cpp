@@ -54,7 +54,7 @@ void measure(const Model& model, const State& state, FrameRecord& record) {
   // Only the prescribed components count: a roller's reaction is normal to it.
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
   for (const auto& form : model.problem->forms()) form->add_gradient(x, g);
-  record.reactions.assign(model.kinematics.size(), Eigen::Vector3d::Zero());
+  record.reactions.assign(model.kinematics->size(), Eigen::Vector3d::Zero());
   for (size_t i = 0; i < model.dof_owner.size(); ++i)
     if (const int c = model.dof_owner[i]; c >= 0) record.reactions[c](i % 3) += g(i);
   for (const auto& d : model.vertex_directions)
@@ -82,6 +82,17 @@ void measure(const Model& model, const State& state, FrameRecord& record) {
 }
 
 }  // namespace
+
+FrameRecord simulate_frame(Model& model, State& state, int frame, const IterationProgress& progress) {
+  const auto t_frame = Clock::now();
+  FrameRecord record;
+  static_cast<StepStats&>(record) = model.integrator->advance_frame(state, frame, progress);
+  record.frame = frame;
+  record.time = model.integrator->dynamic() ? frame * model.integrator->frame_duration() : double(frame);
+  measure(model, state, record);
+  record.seconds = std::chrono::duration<double>(Clock::now() - t_frame).count();
+  return record;
+}
 
 RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   const auto t_start = Clock::now();
@@ -151,17 +162,11 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   // ---- one frame loop for every integrator
   try {
     for (int frame = first_frame; frame <= frames; ++frame) {
-      const auto t_frame = Clock::now();
       if (options.progress) options.progress({frame, frames, 0, 0.0, elapsed(), false, nullptr});
       auto progress = [&](int iteration, double residual) {
         if (options.progress) options.progress({frame, frames, iteration, residual, elapsed(), false, nullptr});
       };
-      FrameRecord record;
-      static_cast<StepStats&>(record) = integrator.advance_frame(state, frame, progress);
-      record.frame = frame;
-      record.time = frame_time(frame);
-      measure(model, state, record);
-      record.seconds = std::chrono::duration<double>(Clock::now() - t_frame).count();
+      const FrameRecord record = simulate_frame(model, state, frame, progress);
       summary.frames.push_back(record);
       output.write(frame, record.time, state);
       if (writing) {

@@ -46,16 +46,18 @@ struct Model {
   // energy only; its inertia, obstacles and limits are the stepper's).
   std::shared_ptr<Problem> problem;
   BoundarySurface surface;
-  // External loads (gravity, body force, point loads, tractions) as nodal forces, each with its
-  // amplitude; the integrator sets `load_form` to their sum at each (fractional) frame it solves.
-  std::vector<ScaledLoad> loads;
+  // External loads (gravity, point loads, tractions) as nodal forces, each with its amplitude;
+  // the integrator sets `load_form` to their sum at each (fractional) frame it solves. The loads
+  // and the boundary conditions are shared with the integrator's prescribed motion, so a change
+  // made here between frames (run/session.hpp) takes effect from the next frame on.
+  std::shared_ptr<std::vector<ScaledLoad>> loads;
   std::shared_ptr<ExternalForceForm> load_form;
   Eigen::VectorXd external_forces;  // the loads at full amplitude (frame 1 of constant loads)
   Eigen::VectorXd external_forces_at(double frame) const;
+  std::shared_ptr<std::vector<KinematicCondition>> kinematics;  // the scene's boundary conditions, in order
   // Follower pressures in scene order, and their amplitudes (the frame sets each one's scale).
   std::vector<std::shared_ptr<PressureForm>> pressures;
   std::vector<Amplitude> pressure_amplitudes;
-  std::vector<KinematicCondition> kinematics;  // the scene's boundary conditions, in order
   // Per global DOF of a vertex without a rotated frame: the boundary entry prescribing it, or -1.
   std::vector<int> dof_owner;
   // Vertices with a rotated frame (a direction that is not a coordinate axis): how many of their

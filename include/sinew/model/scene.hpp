@@ -129,6 +129,9 @@ struct Scene {
 constexpr int kMaxFrames = 1000000;
 
 Scene load_scene(const std::filesystem::path& file);
+// A boundary or obstacle motion in the scene's JSON form ({"type": "translate", "per_frame": [0,
+// 0, 1]}), checked as the scene reader checks it; errors name `context` and the field.
+RigidMotion motion_from_json(const nlohmann::json& json, const std::string& context);
 Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file);
 
 // Every file the scene reads besides itself, resolved: the mesh file, the surface a mesh is

@@ -13,6 +13,10 @@
 #include "sinew/model/scene.hpp"
 
 namespace sinew {
+struct Model;  // sinew/model/model.hpp
+}
+
+namespace sinew {
 
 // A frame's stats (iterations, residual, times, the integrator's counters) and what was measured
 // on its final state.
@@ -63,6 +67,11 @@ struct RunSummary {
   Eigen::VectorXd x;                // final positions
   bool all_converged() const;
 };
+
+// Advances `state` over frame `frame` with the model's integrator and measures the result (volume,
+// J, reactions, energies, contact); `seconds` is the frame's wall time. run_scene's frame loop and
+// Session::step (session.hpp) both take their frames from here.
+FrameRecord simulate_frame(Model& model, State& state, int frame, const IterationProgress& progress);
 
 // Builds and validates the whole model (mesh, material, selections, loads) before writing
 // anything; a fresh run then replaces the files of an earlier run in out_dir. The run stops
