@@ -149,7 +149,7 @@ std::string glb_bytes(const AnimatedScene& scene) {
       primitive["targets"] = json::array();
       for (std::size_t f = 1; f < frames; ++f) {
         const Eigen::MatrixX3f delta = m.positions[f] - m.positions[0];
-        primitive["targets"].push_back({{"POSITION", b.add_vec3(delta, 0)}});
+        primitive["targets"].push_back({{"POSITION", b.add_vec3(delta, kArrayBuffer)}});
       }
       mesh["weights"] = std::vector<float>(frames - 1, 0.0f);
       // Frame f shows target f (frame 0: no target): row f of the weights is the unit vector e_f.

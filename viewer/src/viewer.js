@@ -75,7 +75,7 @@ async function start() {
 
   const scene = new THREE.Scene();
   scene.add(gltf.scene);
-  scene.add(new THREE.HemisphereLight(0xffffff, 0x667080, 1.6));
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x8088a0, 2.2));
   const sun = new THREE.DirectionalLight(0xffffff, 1.8);
   sun.position.set(2, 4, 3);
   scene.add(sun);

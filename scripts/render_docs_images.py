@@ -1,0 +1,92 @@
+#!/usr/bin/env python3
+"""Renders the docs' pictures of the example scenes (docs/img/example_NAME.png) with Sinew's own
+tooling: each scene is run small (a coarser mesh and/or fewer frames where the example is large,
+see EXAMPLES), `sinew viewer` writes its browser viewer, and the viewer's headless screenshot
+(tests/browser/screenshot.mjs: Debian's chromium through playwright-core) is the picture.
+
+Needs a build (scripts/setup) and the browser test tools (scripts/setup-browser-tests).
+Usage: scripts/render_docs_images.py [NAME ...]   (default: every example in EXAMPLES)
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+SINEW = ROOT / "build" / "sinew"
+TOOLS = ROOT / "build" / "tests" / "browser"
+SCREENSHOT = ROOT / "tests" / "browser" / "screenshot.mjs"
+OUT = ROOT / "docs" / "img"
+
+# name: (changes to the scene, frames to run or None for the scene's, frame to show (-1: last), field)
+EXAMPLES = {
+    "stretch_small": ({}, None, -1, "von_mises"),
+    "stretch_medium": ({}, None, -1, "von_mises"),
+    "stretch": ({"mesh": {"cells": [14, 14, 18]}}, 12, -1, "von_mises"),
+    "twist": ({"mesh": {"cells": [8, 8, 8]}}, None, -1, "von_mises"),
+    "twist_fixed_corotational": ({"mesh": {"cells": [8, 8, 8]}}, None, -1, "J"),
+    "surface_embedding": ({}, None, -1, "von_mises"),
+    "elbow_cylinder": ({"mesh": {"cell_size": 0.02}}, None, -1, "von_mises"),
+    "elbow": ({"mesh": {"cell_size": 0.02}}, None, -1, "von_mises"),
+    "drop_test": ({}, 20, -1, "von_mises"),
+    "beam_energy_limit": ({}, None, -1, "von_mises"),
+    "falling_sphere": ({}, 30, -1, "von_mises"),
+    "collapsing_sphere": ({"mesh": {"resolution": 6}}, 20, -1, "J"),
+}
+
+
+def merge(scene, changes):
+    for key, value in changes.items():
+        if isinstance(value, dict) and isinstance(scene.get(key), dict):
+            merge(scene[key], value)
+        else:
+            scene[key] = value
+
+
+def render(name, changes, frames, frame, field):
+    source = ROOT / "examples" / f"{name}.json"
+    scene = json.loads(source.read_text())
+    merge(scene, changes)
+    with tempfile.TemporaryDirectory(prefix=f"sinew-docs-{name}-") as tmp:
+        tmp = Path(tmp)
+        # The scene's relative paths (meshes/, rigs/) resolve against its folder: mirror it.
+        for entry in source.parent.iterdir():
+            if entry.is_dir():
+                (tmp / entry.name).symlink_to(entry)
+        small = tmp / f"{name}.json"
+        small.write_text(json.dumps(scene, indent=1))
+        out = tmp / "out"
+        run = [str(SINEW), "run", str(small), "--out", str(out), "--quiet"]
+        if frames:
+            run += ["--frames", str(frames)]
+        subprocess.run(run, check=True)
+        subprocess.run([str(SINEW), "viewer", str(small), "--out", str(out), "--quiet", "--title", name], check=True)
+        png = OUT / f"example_{name}.png"
+        subprocess.run(["node", str(SCREENSHOT), str(out / "viewer.html"), str(png), "--frame", str(frame),
+                        "--field", field, "--size", "640x400"],
+                       check=True, env={**os.environ, "SINEW_BROWSER_TOOLS": str(TOOLS)})
+
+
+def main():
+    names = sys.argv[1:] or list(EXAMPLES)
+    unknown = [n for n in names if n not in EXAMPLES]
+    if unknown:
+        sys.exit(f"render_docs_images: unknown example(s) {', '.join(unknown)}; known: {', '.join(EXAMPLES)}")
+    for need, what in ((SINEW, "build/sinew (run scripts/setup)"), (TOOLS / "node_modules", "the browser test tools (run scripts/setup-browser-tests)")):
+        if not need.exists():
+            sys.exit(f"render_docs_images: {what} not found")
+    if not shutil.which("node"):
+        sys.exit("render_docs_images: node not found (Debian package nodejs)")
+    OUT.mkdir(parents=True, exist_ok=True)
+    for name in names:
+        start = time.monotonic()
+        render(name, *EXAMPLES[name])
+        print(f"render_docs_images: {name} in {time.monotonic() - start:.1f} s", flush=True)
+
+
+if __name__ == "__main__":
+    main()
