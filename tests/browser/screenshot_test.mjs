@@ -43,7 +43,7 @@ try {
   await page.selectOption('#field', 'J');
   check(await page.evaluate(() => document.querySelector('#field').value) === 'J', 'field menu selects J');
   await page.selectOption('#field', '');
-  check(await page.evaluate(() => !document.querySelector('#field').nextElementSibling.checkVisibility()), 'no colour hides the colour bar');
+  check(await page.evaluate(() => !document.querySelector('#legend').checkVisibility()), 'no colour hides the colour bar');
   check(foreign.length === 0, `no network requests${foreign.length ? ': ' + foreign.join(' ') : ''}`);
   check(errors.length === 0, `no page errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
 

@@ -29,6 +29,11 @@ function showError(message) {
   box.textContent = 'Sinew viewer: ' + message;
 }
 
+function formatValue(v) {
+  const a = Math.abs(v);
+  return a === 0 ? '0' : a >= 1e4 || a < 1e-2 ? v.toExponential(2) : String(Number(v.toPrecision(3)));
+}
+
 // Colour of t in [0, 1] from the file's stops (linear RGB, evenly spaced).
 function colorAt(stops, t, out, offset) {
   const s = Math.min(Math.max(t, 0), 1) * (stops.length - 1);
@@ -142,7 +147,11 @@ async function start() {
     const t = times[frame];
     label.textContent = `frame ${frames[frame]} (${frame + 1}/${frames.length})` + (t !== frames[frame] ? `, t = ${Number(t).toPrecision(4)} s` : '');
     legend.style.display = field ? 'flex' : 'none';
-    if (field) legendLo.textContent = Number(lo).toPrecision(4), legendHi.textContent = Number(hi).toPrecision(4);
+    if (field) {
+      legendName.textContent = field;
+      legendLo.textContent = formatValue(Math.abs(lo) < 1e-9 * Math.abs(hi) ? 0 : lo);
+      legendHi.textContent = formatValue(hi);
+    }
     button.textContent = playing ? 'Pause' : 'Play';
   }
 
@@ -154,7 +163,7 @@ async function start() {
   button.id = 'play';
   const slider = element('input', { flex: '1' }, bar);
   Object.assign(slider, { type: 'range', min: '0', max: String(frames.length - 1), step: '1', id: 'frame' });
-  const label = element('span', { minWidth: '14em' }, bar);
+  const label = element('span', { minWidth: '11em' }, bar);
   const select = element('select', {}, bar);
   select.id = 'field';
   for (const name of ['', ...fieldNames]) {
@@ -163,10 +172,15 @@ async function start() {
     opt.textContent = name || '(no colour)';
   }
   select.value = field;
-  const legend = element('div', { alignItems: 'center', gap: '0.3em' }, bar);
-  const legendLo = element('span', {}, legend);
-  const ramp = element('div', { width: '8em', height: '0.9em', border: '1px solid #888' }, legend);
-  const legendHi = element('span', {}, legend);
+  // The colour bar: top right, the field's range over all frames under the ramp.
+  const legend = element('div', { position: 'fixed', right: '0.8em', top: '0.5em', flexDirection: 'column', gap: '0.2em',
+    fontSize: '13px', color: '#333', width: '11em' }, document.body);
+  legend.id = 'legend';
+  const legendName = element('span', { textAlign: 'center' }, legend);
+  const ramp = element('div', { height: '0.9em', border: '1px solid #888' }, legend);
+  const legendRange = element('div', { display: 'flex', justifyContent: 'space-between' }, legend);
+  const legendLo = element('span', {}, legendRange);
+  const legendHi = element('span', {}, legendRange);
   // CSS wants sRGB: the stops are linear.
   const css = stops.map((c) => `rgb(${c.map((v) => Math.round(255 * (v <= 0.0031308 ? 12.92 * v : 1.055 * v ** (1 / 2.4) - 0.055))).join(',')})`);
   ramp.style.background = `linear-gradient(to right, ${css.join(',')})`;
