@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Renders the docs' pictures of the example scenes (docs/img/example_NAME.png) with Sinew's own
+"""Renders the docs' pictures of the example scenes (docs/img/example_NAME.png, viewer_page.png) with Sinew's own
 tooling: each scene is run small (a coarser mesh and/or fewer frames where the example is large,
 see EXAMPLES), `sinew viewer` writes its browser viewer, and the viewer's headless screenshot
 (tests/browser/screenshot.mjs: Debian's chromium through playwright-core) is the picture.
 
 Needs a build (scripts/setup) and the browser test tools (scripts/setup-browser-tests).
-Usage: scripts/render_docs_images.py [NAME ...]   (default: every example in EXAMPLES)
+Usage: scripts/render_docs_images.py [PICTURE ...]   (default: every picture in EXAMPLES)
 """
 import json
 import os
@@ -22,20 +22,22 @@ TOOLS = ROOT / "build" / "tests" / "browser"
 SCREENSHOT = ROOT / "tests" / "browser" / "screenshot.mjs"
 OUT = ROOT / "docs" / "img"
 
-# name: (changes to the scene, frames to run or None for the scene's, frame to show (-1: last), field)
+# picture name: (scene under examples/, changes to the scene, frames to run (None: the scene's),
+# frame to show (-1: the last), field, controls bar shown). Pictures are docs/img/NAME.png.
 EXAMPLES = {
-    "stretch_small": ({}, None, -1, "von_mises"),
-    "stretch_medium": ({}, None, -1, "von_mises"),
-    "stretch": ({"mesh": {"cells": [14, 14, 18]}}, 12, -1, "von_mises"),
-    "twist": ({"mesh": {"cells": [8, 8, 8]}}, None, -1, "von_mises"),
-    "twist_fixed_corotational": ({"mesh": {"cells": [8, 8, 8]}}, None, -1, "J"),
-    "surface_embedding": ({}, None, -1, "von_mises"),
-    "elbow_cylinder": ({"mesh": {"cell_size": 0.02}}, None, -1, "von_mises"),
-    "elbow": ({"mesh": {"cell_size": 0.02}}, None, -1, "von_mises"),
-    "drop_test": ({}, 20, -1, "von_mises"),
-    "beam_energy_limit": ({}, None, -1, "von_mises"),
-    "falling_sphere": ({}, 30, -1, "von_mises"),
-    "collapsing_sphere": ({"mesh": {"resolution": 6}}, 20, -1, "J"),
+    "viewer_page": ("features/obstacles_quasistatic", {}, None, 3, "von_mises", True),
+    "example_stretch_small": ("stretch_small", {}, None, -1, "von_mises", False),
+    "example_stretch_medium": ("stretch_medium", {}, None, -1, "von_mises", False),
+    "example_stretch": ("stretch", {"mesh": {"cells": [14, 14, 18]}}, 12, -1, "von_mises", False),
+    "example_twist": ("twist", {"mesh": {"cells": [8, 8, 8]}}, None, -1, "von_mises", False),
+    "example_twist_fixed_corotational": ("twist_fixed_corotational", {"mesh": {"cells": [8, 8, 8]}}, None, -1, "J", False),
+    "example_surface_embedding": ("surface_embedding", {}, None, -1, "von_mises", False),
+    "example_elbow_cylinder": ("elbow_cylinder", {"mesh": {"cell_size": 0.02}}, None, -1, "von_mises", False),
+    "example_elbow": ("elbow", {"mesh": {"cell_size": 0.02}}, None, -1, "von_mises", False),
+    "example_drop_test": ("drop_test", {}, 20, -1, "von_mises", False),
+    "example_beam_energy_limit": ("beam_energy_limit", {}, None, -1, "von_mises", False),
+    "example_falling_sphere": ("falling_sphere", {}, 30, -1, "von_mises", False),
+    "example_collapsing_sphere": ("collapsing_sphere", {"mesh": {"resolution": 6}}, 20, -1, "J", False),
 }
 
 
@@ -47,8 +49,9 @@ def merge(scene, changes):
             scene[key] = value
 
 
-def render(name, changes, frames, frame, field):
-    source = ROOT / "examples" / f"{name}.json"
+def render(picture, scene_name, changes, frames, frame, field, controls):
+    source = ROOT / "examples" / f"{scene_name}.json"
+    name = source.stem
     scene = json.loads(source.read_text())
     merge(scene, changes)
     with tempfile.TemporaryDirectory(prefix=f"sinew-docs-{name}-") as tmp:
@@ -64,11 +67,12 @@ def render(name, changes, frames, frame, field):
         if frames:
             run += ["--frames", str(frames)]
         subprocess.run(run, check=True)
-        subprocess.run([str(SINEW), "viewer", str(small), "--out", str(out), "--quiet", "--title", name], check=True)
-        png = OUT / f"example_{name}.png"
-        subprocess.run(["node", str(SCREENSHOT), str(out / "viewer.html"), str(png), "--frame", str(frame),
-                        "--field", field, "--size", "640x400"],
-                       check=True, env={**os.environ, "SINEW_BROWSER_TOOLS": str(TOOLS)})
+        subprocess.run([str(SINEW), "viewer", str(small), "--out", str(out), "--quiet", "--title", scene_name], check=True)
+        shot = ["node", str(SCREENSHOT), str(out / "viewer.html"), str(OUT / f"{picture}.png"), "--frame", str(frame),
+                "--field", field, "--size", "640x480" if controls else "640x400"]
+        if controls:
+            shot.append("--controls")
+        subprocess.run(shot, check=True, env={**os.environ, "SINEW_BROWSER_TOOLS": str(TOOLS)})
 
 
 def main():

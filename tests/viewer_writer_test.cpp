@@ -138,6 +138,9 @@ TEST(GltfWriter, MorphTargetsReproduceEveryFrame) {
   EXPECT_TRUE(prim["attributes"].contains("COLOR_0"));
   EXPECT_EQ(g["extras"]["sinew"]["frames"], json({0, 5, 10}));
 
+  // Under a field the base colour is white (COLOR_0 multiplies it); the own colour is in extras.
+  EXPECT_EQ(g["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"], json({1.0, 1.0, 1.0, 1.0}));
+  EXPECT_NEAR(extras["base_color"][0].get<double>(), 0.8, 1e-6);
   // The static obstacle: no targets, blended material, no animation channel.
   EXPECT_FALSE(g["meshes"][1]["primitives"][0].contains("targets"));
   EXPECT_EQ(g["materials"][1]["alphaMode"], "BLEND");
@@ -263,7 +266,7 @@ Scene small_scene(const TempDir& dir) {
       {"name": "right", "select": {"plane": {"point": [1, 0, 0], "normal": [1, 0, 0]}},
        "motion": {"type": "translate", "per_frame": [0.1, 0, 0]}}
     ],
-    "obstacles": [{"name": "ball", "type": "sphere", "center": [0.5, 0.25, 2], "radius": 0.2,
+    "obstacles": [{"name": "ball", "type": "sphere", "center": [0.5, 0.25, 2], "radius": 0.2, "stiffness": 1e8,
                    "motion": {"type": "translate", "per_frame": [0, 0, -0.1]}}],
     "frames": 2
   })");

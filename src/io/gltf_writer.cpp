@@ -163,10 +163,14 @@ std::string glb_bytes(const AnimatedScene& scene) {
     nodes.push_back({{"name", m.name}, {"mesh", meshes.size() - 1}});
     nodes[0]["children"].push_back(node);
 
+    // COLOR_0 multiplies the base colour: with a field the base is white (the field's colours
+    // as they are) and the object's own colour is kept in extras for a page showing no field.
+    const Eigen::Vector4f base = m.field_names.empty() ? m.color : Eigen::Vector4f(1.0f, 1.0f, 1.0f, m.color(3));
+    if (!m.field_names.empty()) meshes.back()["extras"]["base_color"] = {m.color(0), m.color(1), m.color(2), m.color(3)};
     json material = {{"name", m.name},
                      {"doubleSided", true},
                      {"pbrMetallicRoughness",
-                      {{"baseColorFactor", {m.color(0), m.color(1), m.color(2), m.color(3)}},
+                      {{"baseColorFactor", {base(0), base(1), base(2), base(3)}},
                        {"metallicFactor", 0.0},
                        {"roughnessFactor", 0.8}}}};
     if (m.color(3) < 1.0f) material["alphaMode"] = "BLEND";

@@ -75,7 +75,9 @@ async function start() {
       if (!fieldNames.includes(name)) fieldNames.push(name);
     }
     mesh.frustumCulled = false;  // morphs move vertices outside the rest bounds
-    objects.push({ mesh, role: extras.role || 'body', fields, ranges: extras.field_ranges || {} });
+    // Vertex colours multiply the base colour: white under a field, the object's own colour without.
+    const own = extras.base_color ? new THREE.Color().setRGB(...extras.base_color.slice(0, 3)) : mesh.material.color.clone();
+    objects.push({ mesh, role: extras.role || 'body', fields, ranges: extras.field_ranges || {}, own });
   }
 
   const scene = new THREE.Scene();
@@ -107,9 +109,21 @@ async function start() {
   const camera = new THREE.PerspectiveCamera(35, window.innerWidth / window.innerHeight, radius / 100, radius * 100);
   // A fixed three-quarter view from the front right, slightly above (deterministic screenshots).
   const direction = new THREE.Vector3(1.0, 0.75, 1.6).normalize();
-  const distance = radius / Math.sin(THREE.MathUtils.degToRad(35 / 2)) * 1.05;
-  camera.position.copy(center).addScaledVector(direction, distance);
-  camera.lookAt(center);
+  // Distance: the bounds' corners fill 85 % of the view (a few passes, since perspective makes
+  // the projected size depend on the distance).
+  let distance = radius / Math.sin(THREE.MathUtils.degToRad(35 / 2));
+  const corner = new THREE.Vector3();
+  for (let pass = 0; pass < 4; ++pass) {
+    camera.position.copy(center).addScaledVector(direction, distance);
+    camera.lookAt(center);
+    camera.updateMatrixWorld();
+    let extent = 0;
+    for (let c = 0; c < 8; ++c) {
+      corner.set(c & 1 ? box.max.x : box.min.x, c & 2 ? box.max.y : box.min.y, c & 4 ? box.max.z : box.min.z).project(camera);
+      extent = Math.max(extent, Math.abs(corner.x), Math.abs(corner.y));
+    }
+    if (pass < 3) distance *= Math.max(extent, 1e-3) / 0.85;
+  }
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.copy(center);
   controls.update();
@@ -137,6 +151,8 @@ async function start() {
       const colors = o.mesh.geometry.attributes.color;
       const values = field && o.fields[field] ? o.fields[field][frame] : null;
       o.mesh.material.vertexColors = Boolean(values && colors);
+      if (values && colors) o.mesh.material.color.setRGB(1, 1, 1);
+      else o.mesh.material.color.copy(o.own);
       if (values && colors) {
         for (let i = 0; i < values.length; ++i) colorAt(stops, hi > lo ? (values[i] - lo) / (hi - lo) : 0.5, colors.array, 3 * i);
         colors.needsUpdate = true;
