@@ -35,7 +35,7 @@ EXAMPLES = {
     "example_elbow_cylinder": ("elbow_cylinder", {"mesh": {"cell_size": 0.02}}, None, -1, "von_mises", False),
     "example_elbow": ("elbow", {"mesh": {"cell_size": 0.02}}, None, -1, "von_mises", False),
     "example_drop_test": ("drop_test", {}, 20, -1, "von_mises", False),
-    "example_beam_energy_limit": ("beam_energy_limit", {}, None, -1, "von_mises", False),
+    "example_beam_energy_limit": ("beam_energy_limit", {}, 12, -1, "von_mises", False),
     "example_falling_sphere": ("falling_sphere", {}, 30, -1, "von_mises", False),
     "example_collapsing_sphere": ("collapsing_sphere", {"mesh": {"resolution": 6}}, 20, -1, "J", False),
 }

@@ -80,6 +80,11 @@ async function start() {
     objects.push({ mesh, role: extras.role || 'body', fields, ranges: extras.field_ranges || {}, own });
   }
 
+  // With a render surface, the simulation lattice's surface (which encloses it) turns into a faint hull.
+  if (objects.some((o) => o.role === 'render_surface')) {
+    for (const o of objects.filter((x) => x.role === 'body')) Object.assign(o.mesh.material, { transparent: true, opacity: 0.2, depthWrite: false });
+  }
+
   const scene = new THREE.Scene();
   scene.add(gltf.scene);
   scene.add(new THREE.HemisphereLight(0xffffff, 0x8088a0, 2.2));
