@@ -13,11 +13,11 @@
 #include <tbb/global_control.h>
 
 #include "sinew/core/error.hpp"
-#include "sinew/fem/elastic_form.hpp"
-#include "sinew/material/paper000/stable_neo_hookean.hpp"
+#include "sinew/forms/elastic_form.hpp"
+#include "sinew/material/families/stable_neo_hookean.hpp"
 #include "sinew/mesh/lattice.hpp"
-#include "sinew/scene/simulation.hpp"
-#include "sinew/solver/time_stepper.hpp"
+#include "sinew/run/simulation.hpp"
+#include "sinew/integrator/time_stepper.hpp"
 
 namespace {
 
@@ -63,7 +63,7 @@ Row run(const std::string& experiment, const nlohmann::json& scene_json, const s
 
 // The energy test's setting at bench size: a 1 m cube of 8^3 hexes stretched 20 % along x,
 // released at rest with no gravity, damping or contact; one time step of 0.01 s per frame.
-Row released_block(Integrator integrator, int frames) {
+Row released_block(DynamicsScheme integrator, int frames) {
   auto disc = std::make_shared<Discretization>(
       box_lattice(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), Eigen::Vector3i::Constant(8)));
   const double E = 1e4, nu = 0.3, mu = E / (2 * (1 + nu)), lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
@@ -90,7 +90,7 @@ Row released_block(Integrator integrator, int frames) {
   r.converged = true;
   const auto t0 = std::chrono::steady_clock::now();
   for (int n = 0; n < frames && r.converged; ++n) {
-    const StepReport s = stepper.step(x, v, n, n + 1, *linear);
+    const StepStats s = stepper.step(x, v, n, n + 1, *linear);
     r.converged = s.converged;
     r.frames += 1;
     r.steps += 1;
@@ -132,8 +132,8 @@ int main(int argc, char** argv) {
       }
     }
     for (const char* integrator : {"backward_euler", "semi_implicit"})
-      rows.push_back(released_block(integrator == std::string("backward_euler") ? Integrator::BackwardEuler
-                                                                                : Integrator::SemiImplicit,
+      rows.push_back(released_block(integrator == std::string("backward_euler") ? DynamicsScheme::BackwardEuler
+                                                                                : DynamicsScheme::SemiImplicit,
                                     frames));
     std::printf("%-28s %-15s %-8s %7s %7s %6s %6s %9s %8s %9s %7s  %s\n", "experiment", "integrator", "solver",
                 "verts", "hexes", "frames", "steps", "ms/frame", "newton/f", "linear/f", "newt/st", "figures");

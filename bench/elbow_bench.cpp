@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "sinew/core/error.hpp"
-#include "sinew/scene/elbow_experiment.hpp"
+#include "experiments/elbow_experiment.hpp"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <memory>
 #include <tbb/global_control.h>
 
-#include "sinew/constraints/paper001_experiments.hpp"
+#include "experiments/paper001_experiments.hpp"
 
 namespace {
 

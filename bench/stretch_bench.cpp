@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "sinew/core/error.hpp"
-#include "sinew/scene/experiments.hpp"
+#include "experiments/paper000_experiments.hpp"
 
 namespace {
 

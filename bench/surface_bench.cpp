@@ -4,7 +4,7 @@
 // tetrahedralisation at two max_edge values. Counters: elements (and vertices) produced.
 #include <benchmark/benchmark.h>
 
-#include "sinew/fem/embedding.hpp"
+#include "sinew/element/embedding.hpp"
 #include "sinew/io/surface_reader.hpp"
 #include "sinew/mesh/inside_test.hpp"
 #include "sinew/mesh/tetrahedralize_surface.hpp"

@@ -2,7 +2,7 @@
 """Writes examples/meshes/arm.obj: the elbow-flexion arm of paper 000 Fig. 2/10 (upper arm with a
 biceps bulge, elbow, forearm with a flexor bulge) as a closed, manifold triangle surface.
 
-The shape is the signed distance arm_sdf() of src/scene/elbow_experiment.cpp (same parts and
+The shape is the signed distance arm_sdf() of experiments/elbow_experiment.cpp (same parts and
 numbers, keep both in step), extracted with marching cubes (python3-skimage). Units: metres; the
 arm lies along +x (shoulder at x = 0, elbow at x = 0.30, wrist at x = 0.56), biceps side +z.
 

@@ -5,9 +5,9 @@
 
 #include <fmt/format.h>
 
-#include "sinew/constraints/corotational_hex.hpp"
-#include "sinew/constraints/paper001_experiments.hpp"
-#include "sinew/fem/mass.hpp"
+#include "sinew/forms/corotational_hex_form.hpp"
+#include "experiments/paper001_experiments.hpp"
+#include "sinew/element/mass.hpp"
 #include "sinew/mesh/lattice.hpp"
 
 namespace sinew {
@@ -25,27 +25,27 @@ TEST(Paper001Meshes, BeamAndSphereHaveThePapersElementCounts) {
   for (Eigen::Index v = 0; v < sphere.num_vertices(); ++v) EXPECT_LE(sphere.vertices.row(v).norm(), 1.0 + 1e-12);
 }
 
-TEST(ConstrainedStepper, FreeFallWithoutConstraintsIsBackwardEuler) {
+TEST(EnergyLimitedStepper, FreeFallWithoutConstraintsIsBackwardEuler) {
   // A rigid free fall has no elastic force: v = v0 + h g exactly, every step.
   const VolumeMesh mesh = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1), Eigen::Vector3i(1, 1, 1));
-  auto model = std::make_shared<CorotationalHex>(std::make_shared<Discretization>(mesh),
+  auto model = std::make_shared<CorotationalHexForm>(std::make_shared<Discretization>(mesh),
                                                  HookeCoefficients::from_young_poisson(1e5, 0.3));
   const Eigen::VectorXd masses = lumped_mass(model->discretization(), 100.0);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(24);
   for (int v = 0; v < 8; ++v) f(3 * v + 2) = -9.81 * masses(v);
-  ConstrainedStepSettings s;
+  EnergyLimitedStepSettings s;
   s.time_step = 0.02;
-  ConstrainedStepper stepper(model, masses, f, std::vector<char>(24, 0), {}, s);
+  EnergyLimitedStepper stepper(model, masses, f, std::vector<char>(24, 0), {}, s);
   Eigen::VectorXd x = mesh.rest_positions(), v = Eigen::VectorXd::Zero(24);
   for (int k = 1; k <= 5; ++k) {
-    const ConstrainedStepReport r = stepper.step(x, v);
+    const EnergyLimitedStepReport r = stepper.step(x, v);
     EXPECT_TRUE(r.converged);
     EXPECT_EQ(r.sqp_iterations, 0);
     for (int i = 0; i < 8; ++i) EXPECT_NEAR(v(3 * i + 2), -9.81 * 0.02 * k, 1e-9);
   }
 }
 
-TEST(ConstrainedStepper, BeamDeflectionFallsWithTheEnergyLimitAndLimitsHold) {
+TEST(EnergyLimitedStepper, BeamDeflectionFallsWithTheEnergyLimitAndLimitsHold) {
   // Fig. 3: linear 150 kPa, limited 1.0 / 0.5 / 0.1 J, linear 2 MPa.
   struct Case {
     const char* name;
@@ -76,7 +76,7 @@ TEST(ConstrainedStepper, BeamDeflectionFallsWithTheEnergyLimitAndLimitsHold) {
   for (size_t i = 1; i < deflection.size(); ++i) EXPECT_LT(deflection[i], deflection[i - 1]) << cases[i].name;
 }
 
-TEST(ConstrainedStepper, FallingSphereRestsOnFrictionalGround) {
+TEST(EnergyLimitedStepper, FallingSphereRestsOnFrictionalGround) {
   // Fig. 4 (27 hexahedra): all three land without penetration beyond tolerance; the energy
   // limit keeps the compliant sphere from being compressed as much as the linear one.
   struct Case {
@@ -107,7 +107,7 @@ TEST(ConstrainedStepper, FallingSphereRestsOnFrictionalGround) {
 }
 
 }  // namespace
-TEST(ConstrainedStepper, FactorizationReuseMatchesFreshFactorizations) {
+TEST(EnergyLimitedStepper, FactorizationReuseMatchesFreshFactorizations) {
   // Reusing a lagged factorisation (CG preconditioner + LCP splitting) must land on the same
   // motion as factorising every matrix, up to the solver tolerances, with far fewer
   // factorisations. Sphere at 6 cells (energy limits and frictional contact both active) and the
@@ -150,7 +150,7 @@ TEST(ConstrainedStepper, FactorizationReuseMatchesFreshFactorizations) {
   EXPECT_LE(d.totals.max_element_energy, 0.1 * (1.0 + beam.solver.energy_tolerance));
 }
 
-TEST(ConstrainedStepper, LaggedSolvesFallBackToRefactorisation) {
+TEST(EnergyLimitedStepper, LaggedSolvesFallBackToRefactorisation) {
   // With a CG budget of one iteration a lagged factorisation can only finish a solve when it is
   // of the very same matrix (free fall: no rotation); every other solve must fall back to a
   // fresh factorisation and give the fresh-factorisation answer.

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "sinew/constraints/corotational_hex.hpp"
+#include "sinew/forms/corotational_hex_form.hpp"
 #include "sinew/constraints/obstacle_contacts.hpp"
-#include "sinew/constraints/paper001_experiments.hpp"
-#include "sinew/fem/mass.hpp"
+#include "experiments/paper001_experiments.hpp"
+#include "sinew/element/mass.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/mesh/surface.hpp"
 
@@ -17,14 +17,14 @@ namespace {
 constexpr double kGravity = 9.81;
 
 struct Body {
-  std::shared_ptr<CorotationalHex> model;
+  std::shared_ptr<CorotationalHexForm> model;
   Eigen::VectorXd masses, gravity;
   std::vector<int> surface;
 };
 
 Body make_body(const VolumeMesh& mesh, double young, double density, const Eigen::Vector3d& g) {
   Body b;
-  b.model = std::make_shared<CorotationalHex>(std::make_shared<Discretization>(mesh),
+  b.model = std::make_shared<CorotationalHexForm>(std::make_shared<Discretization>(mesh),
                                               HookeCoefficients::from_young_poisson(young, 0.3));
   b.masses = lumped_mass(b.model->discretization(), density);
   b.gravity = Eigen::VectorXd::Zero(3 * mesh.num_vertices());
@@ -62,15 +62,15 @@ TEST(ConstraintObstacleContact, SphereDroppedOnStaticSphereDoesNotPenetrate) {
   const VolumeMesh mesh = paper001::sphere_mesh(Eigen::Vector3d(0.15, 0, 1.1), 0.3, 3);
   const Body b = make_body(mesh, 2e5, 500.0, Eigen::Vector3d(0, 0, -kGravity));
   auto ball = std::make_shared<Obstacle>("ball", std::make_shared<SphereObstacle>(Eigen::Vector3d::Zero(), 0.5));
-  ConstrainedStepSettings s;
+  EnergyLimitedStepSettings s;
   s.time_step = 0.01;
   const double frame_seconds = 0.01;
-  ConstrainedStepper stepper(b.model, b.masses, b.gravity, std::vector<char>(b.gravity.size(), 0),
+  EnergyLimitedStepper stepper(b.model, b.masses, b.gravity, std::vector<char>(b.gravity.size(), 0),
                              obstacle_contacts({{ball, 0.3}}, b.surface, 0.05, frame_seconds), s);
   Eigen::VectorXd x = mesh.rest_positions(), v = Eigen::VectorXd::Zero(x.size());
   int touching_steps = 0;
   for (int k = 0; k < 60; ++k) {
-    const ConstrainedStepReport r = stepper.step(x, v);
+    const EnergyLimitedStepReport r = stepper.step(x, v);
     EXPECT_TRUE(r.converged) << "step " << k;
     EXPECT_LE(penetration(*ball, x, stepper.time() / frame_seconds), s.contact_tolerance) << "step " << k;
     if (r.active_contacts > 0) ++touching_steps;
@@ -92,14 +92,14 @@ TEST(ConstraintObstacleContact, BoxDroppedOnRisingBoxDoesNotPenetrate) {
                {30.0, Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 0.3)}};
   auto lift = std::make_shared<Obstacle>("lift", std::make_shared<BoxObstacle>(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 0)),
                                          path);
-  ConstrainedStepSettings s;
+  EnergyLimitedStepSettings s;
   s.time_step = 0.01;
   const double frame_seconds = 0.01;
-  ConstrainedStepper stepper(b.model, b.masses, b.gravity, std::vector<char>(b.gravity.size(), 0),
+  EnergyLimitedStepper stepper(b.model, b.masses, b.gravity, std::vector<char>(b.gravity.size(), 0),
                              obstacle_contacts({{lift, 0.5}}, b.surface, 0.02, frame_seconds), s);
   Eigen::VectorXd x = mesh.rest_positions(), v = Eigen::VectorXd::Zero(x.size());
   for (int k = 0; k < 60; ++k) {
-    const ConstrainedStepReport r = stepper.step(x, v);
+    const EnergyLimitedStepReport r = stepper.step(x, v);
     EXPECT_TRUE(r.converged) << "step " << k;
     EXPECT_LE(penetration(*lift, x, stepper.time() / frame_seconds), s.contact_tolerance) << "step " << k;
   }
@@ -120,14 +120,14 @@ double slope_travel(double theta, double mu, double seconds) {
   }
   const Body b = make_body(mesh, 1e7, 1000.0, Eigen::Vector3d(0, 0, -kGravity));
   auto plane = std::make_shared<Obstacle>("slope", std::make_shared<PlaneObstacle>(Eigen::Vector3d::Zero(), normal));
-  ConstrainedStepSettings s;
+  EnergyLimitedStepSettings s;
   s.time_step = 0.01;
-  ConstrainedStepper stepper(b.model, b.masses, b.gravity, std::vector<char>(b.gravity.size(), 0),
+  EnergyLimitedStepper stepper(b.model, b.masses, b.gravity, std::vector<char>(b.gravity.size(), 0),
                              obstacle_contacts({{plane, mu}}, b.surface, 0.01, 0.01), s);
   Eigen::VectorXd x = mesh.rest_positions(), v = Eigen::VectorXd::Zero(x.size());
   const Eigen::VectorXd x0 = x;
   for (int k = 0; k < static_cast<int>(std::lround(seconds / s.time_step)); ++k) {
-    const ConstrainedStepReport r = stepper.step(x, v);
+    const EnergyLimitedStepReport r = stepper.step(x, v);
     EXPECT_TRUE(r.converged);
     EXPECT_LE(penetration(*plane, x, 0.0), s.contact_tolerance);
   }

@@ -5,7 +5,7 @@
 
 #include "sinew/core/error.hpp"
 #include "sinew/material/catalog.hpp"
-#include "sinew/material/corotational.hpp"
+#include "sinew/material/families/corotational.hpp"
 #include "sinew/material/curve.hpp"
 #include "sinew/material/lame.hpp"
 #include "sinew/material/nonlinearity.hpp"

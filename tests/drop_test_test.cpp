@@ -7,7 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "sinew/scene/simulation.hpp"
+#include "sinew/run/simulation.hpp"
 
 namespace sinew {
 namespace {

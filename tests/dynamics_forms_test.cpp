@@ -5,10 +5,10 @@
 #include <random>
 
 #include "dynamics_test_support.hpp"
-#include "sinew/contact/penalty_contact_form.hpp"
-#include "sinew/fem/elastic_form.hpp"
-#include "sinew/fem/inertia_form.hpp"
-#include "sinew/material/paper000/stable_neo_hookean.hpp"
+#include "sinew/forms/penalty_contact_form.hpp"
+#include "sinew/forms/elastic_form.hpp"
+#include "sinew/forms/inertia_form.hpp"
+#include "sinew/material/families/stable_neo_hookean.hpp"
 #include "sinew/mesh/lattice.hpp"
 
 namespace sinew {

@@ -5,12 +5,12 @@
 
 #include <cmath>
 
-#include "sinew/contact/penalty_contact_form.hpp"
-#include "sinew/fem/elastic_form.hpp"
-#include "sinew/fem/external_force_form.hpp"
-#include "sinew/material/paper000/stable_neo_hookean.hpp"
+#include "sinew/forms/penalty_contact_form.hpp"
+#include "sinew/forms/elastic_form.hpp"
+#include "sinew/forms/external_force_form.hpp"
+#include "sinew/material/families/stable_neo_hookean.hpp"
 #include "sinew/mesh/lattice.hpp"
-#include "sinew/solver/time_stepper.hpp"
+#include "sinew/integrator/time_stepper.hpp"
 
 namespace sinew {
 namespace {
@@ -65,7 +65,7 @@ struct Block {
                                             disc->mesh().vertices, s);
   }
   void step(int n) {
-    const StepReport r = stepper->step(x, v, n, n + 1, *linear);
+    const StepStats r = stepper->step(x, v, n, n + 1, *linear);
     ASSERT_TRUE(r.converged) << r.failure;
   }
   Eigen::Vector3d mean_displacement() const {

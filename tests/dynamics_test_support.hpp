@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "sinew/fem/form.hpp"
+#include "sinew/forms/form.hpp"
 
 namespace sinew::testing_support {
 

@@ -11,7 +11,7 @@
 #include <filesystem>
 
 #include "sinew/io/surface_reader.hpp"
-#include "sinew/scene/elbow_experiment.hpp"
+#include "experiments/elbow_experiment.hpp"
 
 namespace sinew {
 namespace {

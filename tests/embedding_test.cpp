@@ -6,7 +6,8 @@
 #include <numbers>
 
 #include "io_test_support.hpp"
-#include "sinew/fem/embedding.hpp"
+#include "sinew/element/mesh_validation.hpp"
+#include "sinew/element/embedding.hpp"
 #include "sinew/io/surface_reader.hpp"
 #include "sinew/mesh/inside_test.hpp"
 #include "sinew/mesh/lattice.hpp"
@@ -51,7 +52,7 @@ TEST(Embedding, ReproducesPointsAtRestAndUnderAffineMapsInHexesAndTets) {
     const Eigen::Vector3d X = bent.vertices.row(v);
     bent.vertices.row(v) += 0.08 * Eigen::RowVector3d(std::sin(3 * X.y()), X.x() * X.z(), std::cos(2 * X.x()) * X.y());
   }
-  bent.validate("bent");
+  validate_mesh(bent, "bent");
   Eigen::MatrixX3d inside(50, 3);
   for (int p = 0; p < 50; ++p) {
     // Mesh points at known reference coordinates of element p % 27: exact by construction.

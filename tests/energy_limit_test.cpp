@@ -4,11 +4,12 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "sinew/constraints/corotational_hex.hpp"
+#include "sinew/forms/corotational_hex_form.hpp"
 #include "sinew/constraints/energy_limit.hpp"
-#include "sinew/constraints/hyperelastic_energy_model.hpp"
-#include "sinew/constraints/pgs.hpp"
-#include "sinew/material/table1/neo_hookean.hpp"
+#include "sinew/forms/elastic_form.hpp"
+#include "sinew/linalg/block_hessian.hpp"
+#include "sinew/solver/pgs.hpp"
+#include "sinew/material/families/neo_hookean.hpp"
 #include "sinew/mesh/lattice.hpp"
 
 namespace sinew {
@@ -19,8 +20,8 @@ std::shared_ptr<const Discretization> one_hex(double sx = 0.3, double sy = 0.2, 
                                                       Eigen::Vector3i(1, 1, 1)));
 }
 
-CorotationalHex corotational(std::shared_ptr<const Discretization> d) {
-  return CorotationalHex(std::move(d), HookeCoefficients::from_young_poisson(150e3, 0.3));
+CorotationalHexForm corotational(std::shared_ptr<const Discretization> d) {
+  return CorotationalHexForm(std::move(d), HookeCoefficients::from_young_poisson(150e3, 0.3));
 }
 
 Eigen::VectorXd deformed(const Discretization& d, const Mat3& R, double noise, unsigned seed) {
@@ -33,6 +34,22 @@ Eigen::VectorXd deformed(const Discretization& d, const Mat3& R, double noise, u
     x.segment<3>(3 * v) = R * p + Vec3(0.5, -0.2, 1.0);
   }
   return x;
+}
+
+// The corotational form's forces (minus its gradient: the warped elastic force) and its
+// assembled Hessian (the warped stiffness), as the energy-limited stepper uses them.
+Eigen::VectorXd forces(const Form& form, const Eigen::VectorXd& x) {
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
+  form.add_gradient(x, g);
+  return -g;
+}
+
+Eigen::SparseMatrix<double> stiffness(const Form& form, const Eigen::VectorXd& x) {
+  std::vector<std::vector<int>> cliques;
+  form.couplings(cliques);
+  BlockHessian H(x.size() / 3, cliques);
+  form.add_hessian(x, H);
+  return H.matrix();
 }
 
 Mat3 some_rotation(double angle = 0.9) { return Eigen::AngleAxisd(angle, Vec3(1, 2, -0.5).normalized()).toRotationMatrix(); }
@@ -60,28 +77,28 @@ TEST(HookeCoefficients, MatchPaperDefinitions) {
   EXPECT_NEAR(c.E3, 2e6 / 2.6, 1e-6);
 }
 
-TEST(CorotationalHex, RigidRotationGivesThatRotationZeroEnergyAndForce) {
+TEST(CorotationalHexForm, RigidRotationGivesThatRotationZeroEnergyAndForce) {
   auto d = one_hex();
-  const CorotationalHex model = corotational(d);
+  const CorotationalHexForm model = corotational(d);
   for (double angle : {0.3, 1.7, 3.0}) {
     const Mat3 R = some_rotation(angle);
     const Eigen::VectorXd x = deformed(*d, R, 0.0, 1);
     EXPECT_LE((model.rotation(0, x) - R).norm(), 1e-12) << angle;
-    EXPECT_NEAR(model.element_energy(0, x), 0.0, 1e-12);
-    EXPECT_LE(model.forces(x).norm(), 1e-9);
-    EXPECT_LE(model.element_energy_gradient(0, x, JacobianKind::Exact).norm(), 1e-9);
+    EXPECT_NEAR(model.element_value(0, x), 0.0, 1e-12);
+    EXPECT_LE(forces(model, x).norm(), 1e-9);
+    EXPECT_LE(model.element_gradient(0, x, JacobianKind::Exact).norm(), 1e-9);
   }
 }
 
-TEST(CorotationalHex, EnergyIsQuadraticFormOfStiffnessInUnrotatedFrame) {
+TEST(CorotationalHexForm, EnergyIsQuadraticFormOfStiffnessInUnrotatedFrame) {
   auto d = one_hex();
-  const CorotationalHex model = corotational(d);
+  const CorotationalHexForm model = corotational(d);
   const Eigen::VectorXd x = deformed(*d, some_rotation(), 0.03, 2);
   const Mat3 R = model.rotation(0, x);
   const Eigen::VectorXd X = d->mesh().rest_positions();
   Eigen::VectorXd u(24);
   for (int a = 0; a < 8; ++a) u.segment<3>(3 * a) = R.transpose() * x.segment<3>(3 * a) - X.segment<3>(3 * a);
-  const double U = model.element_energy(0, x);
+  const double U = model.element_value(0, x);
   EXPECT_GT(U, 0.0);
   EXPECT_NEAR(U, 0.5 * u.dot(model.element_stiffness(0) * u), 1e-10 * U);
   // K_e annihilates the six rigid modes of the rest element.
@@ -95,20 +112,20 @@ TEST(CorotationalHex, EnergyIsQuadraticFormOfStiffnessInUnrotatedFrame) {
   EXPECT_LE((K * w).norm(), 1e-8 * K.norm());
 }
 
-TEST(CorotationalHex, ExactGradientMatchesFiniteDifferencesOfEnergy) {
+TEST(CorotationalHexForm, ExactGradientMatchesFiniteDifferencesOfEnergy) {
   // Several elements, sheared rest shape, large rotation plus deformation: the FD of U_e(x)
   // includes the change of the innermost tetrahedron's rotation.
   VolumeMesh mesh = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.4, 0.3, 0.2), Eigen::Vector3i(2, 1, 1));
   for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v) mesh.vertices(v, 0) += 0.2 * mesh.vertices(v, 2);
   auto d = std::make_shared<Discretization>(mesh);
-  const CorotationalHex model = corotational(d);
+  const CorotationalHexForm model = corotational(d);
   for (unsigned seed : {3u, 4u, 5u}) {
     const Eigen::VectorXd x = deformed(*d, some_rotation(0.4 * seed), 0.04, seed);
     for (Eigen::Index e = 0; e < d->num_elements(); ++e) {
-      auto U = [&](const Eigen::VectorXd& y) { return model.element_energy(e, y); };
+      auto U = [&](const Eigen::VectorXd& y) { return model.element_value(e, y); };
       const Eigen::VectorXd fd = central_differences(U, x, 1e-6);
-      const Eigen::VectorXd exact = model.element_energy_gradient(e, x, JacobianKind::Exact);
-      const Eigen::VectorXd warped = model.element_energy_gradient(e, x, JacobianKind::Warped);
+      const Eigen::VectorXd exact = model.element_gradient(e, x, JacobianKind::Exact);
+      const Eigen::VectorXd warped = model.element_gradient(e, x, JacobianKind::Warped);
       Eigen::VectorXd fd_e(24);
       for (int a = 0; a < 8; ++a) fd_e.segment<3>(3 * a) = fd.segment<3>(3 * d->mesh().elements(e, a));
       EXPECT_LE((exact - fd_e).norm(), 1e-6 * fd_e.norm()) << "seed " << seed << " element " << e;
@@ -120,43 +137,43 @@ TEST(CorotationalHex, ExactGradientMatchesFiniteDifferencesOfEnergy) {
   }
 }
 
-TEST(CorotationalHex, StiffnessIsTheForceDerivativeAtRestAndAssemblesElementBlocks) {
+TEST(CorotationalHexForm, StiffnessIsTheForceDerivativeAtRestAndAssemblesElementBlocks) {
   VolumeMesh mesh = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.4, 0.3, 0.2), Eigen::Vector3i(2, 2, 1));
   auto d = std::make_shared<Discretization>(mesh);
-  const CorotationalHex model = corotational(d);
+  const CorotationalHexForm model = corotational(d);
   // At rest the rotation's change does not enter df/dx, so -K is the exact force Jacobian
   // there (and R K R^T of a rigidly rotated rest state is its rotated copy).
   const Eigen::VectorXd X = d->mesh().rest_positions();
-  const Eigen::MatrixXd K(model.stiffness(X));
+  const Eigen::MatrixXd K(stiffness(model, X));
   Eigen::MatrixXd fd(X.size(), X.size());
   for (Eigen::Index i = 0; i < X.size(); ++i) {
     Eigen::VectorXd xp = X, xm = X;
     xp(i) += 1e-6;
     xm(i) -= 1e-6;
-    fd.col(i) = -(model.forces(xp) - model.forces(xm)) / 2e-6;
+    fd.col(i) = -(forces(model, xp) - forces(model, xm)) / 2e-6;
   }
   EXPECT_LE((K - fd).norm(), 1e-6 * K.norm());
   // Away from rest: the assembled matrix is the sum of the element blocks R K_e R^T.
   const Eigen::VectorXd x = deformed(*d, some_rotation(), 0.02, 13);
   Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(x.size(), x.size());
   for (Eigen::Index e = 0; e < d->num_elements(); ++e) {
-    const Eigen::MatrixXd He = model.element_energy_hessian(e, x);
+    const Eigen::MatrixXd He = model.element_hessian(e, x);
     for (int a = 0; a < 8; ++a)
       for (int b = 0; b < 8; ++b)
         dense.block<3, 3>(3 * d->mesh().elements(e, a), 3 * d->mesh().elements(e, b)) += He.block<3, 3>(3 * a, 3 * b);
   }
-  const Eigen::MatrixXd Kx(model.stiffness(x));
+  const Eigen::MatrixXd Kx(stiffness(model, x));
   EXPECT_LE((Kx - dense).norm(), 1e-12 * dense.norm());
   EXPECT_LE((Kx - Kx.transpose()).norm(), 1e-12 * dense.norm());
 }
 
 TEST(EnergyLimit, ConstraintJacobianMatchesFiniteDifferencesOfC) {
   auto d = one_hex();
-  const CorotationalHex model = corotational(d);
+  const CorotationalHexForm model = corotational(d);
   const EnergyLimit limit{0.05, JacobianKind::Exact};
   const Eigen::VectorXd x = deformed(*d, some_rotation(2.0), 0.03, 7);
   auto C = [&](const Eigen::VectorXd& y) { return energy_constraint(model, 0, y, limit.max_energy); };
-  EXPECT_NEAR(C(x), 1.0 - model.element_energy(0, x) / 0.05, 1e-14);
+  EXPECT_NEAR(C(x), 1.0 - model.element_value(0, x) / 0.05, 1e-14);
   const Eigen::VectorXd fd = central_differences(C, x, 1e-6);
   const Eigen::VectorXd J = energy_constraint_jacobian(model, 0, x, limit);
   EXPECT_LE((J - fd).norm(), 1e-6 * fd.norm());
@@ -165,7 +182,7 @@ TEST(EnergyLimit, ConstraintJacobianMatchesFiniteDifferencesOfC) {
 TEST(EnergyLimit, HyperelasticElementGradientMatchesFiniteDifferences) {
   auto d = std::make_shared<Discretization>(
       box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.3, 0.2, 0.2), Eigen::Vector3i(2, 1, 1)));
-  const HyperelasticEnergyModel model(d, std::make_shared<NeoHookean>(40e3, 20e3));
+  const ElasticForm model(d, std::make_shared<NeoHookean>(40e3, 20e3));
   EXPECT_FALSE(model.supports(JacobianKind::Warped));
   const Eigen::VectorXd x = deformed(*d, some_rotation(), 0.02, 9);
   for (Eigen::Index e = 0; e < d->num_elements(); ++e) {
@@ -179,7 +196,7 @@ TEST(EnergyLimit, HyperelasticElementGradientMatchesFiniteDifferences) {
   }
   // The element energies sum to the form's total, and forces are minus its gradient.
   double total = 0.0;
-  for (Eigen::Index e = 0; e < d->num_elements(); ++e) total += model.element_energy(e, x);
+  for (Eigen::Index e = 0; e < d->num_elements(); ++e) total += model.element_value(e, x);
   const ElasticForm form(d, std::make_shared<NeoHookean>(40e3, 20e3));
   EXPECT_NEAR(total, form.value(x), 1e-10 * total);
 }

@@ -12,11 +12,11 @@
 #include <fmt/format.h>
 #include <filesystem>
 
-#include "sinew/fem/discretization.hpp"
-#include "sinew/fem/elastic_form.hpp"
+#include "sinew/element/discretization.hpp"
+#include "sinew/forms/elastic_form.hpp"
 #include "sinew/material/spec.hpp"
 #include "sinew/mesh/lattice.hpp"
-#include "sinew/scene/experiments.hpp"
+#include "experiments/paper000_experiments.hpp"
 
 namespace sinew {
 namespace {

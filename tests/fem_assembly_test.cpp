@@ -4,9 +4,9 @@
 #include <random>
 #include <set>
 
-#include "sinew/fem/discretization.hpp"
-#include "sinew/fem/elastic_form.hpp"
-#include "sinew/material/corotational.hpp"
+#include "sinew/element/discretization.hpp"
+#include "sinew/forms/elastic_form.hpp"
+#include "sinew/material/families/corotational.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/solver/newton.hpp"
 

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "io_test_support.hpp"
-#include "sinew/fem/discretization.hpp"
+#include "sinew/element/discretization.hpp"
 #include "sinew/io/base64.hpp"
 #include "sinew/io/mesh_reader.hpp"
 

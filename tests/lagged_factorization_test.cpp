@@ -2,7 +2,7 @@
 // CG), the rent-or-buy refresh and the fallback when CG needs too long.
 #include <gtest/gtest.h>
 
-#include "sinew/constraints/lagged_factorization.hpp"
+#include "sinew/solver/lagged_factorization.hpp"
 
 namespace sinew {
 namespace {

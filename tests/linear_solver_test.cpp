@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "sinew/solver/linear_operator.hpp"
+#include "sinew/linalg/linear_operator.hpp"
 #include "sinew/solver/linear_solver.hpp"
 
 namespace sinew {

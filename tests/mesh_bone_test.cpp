@@ -10,7 +10,7 @@
 #include "io_test_support.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/mesh/lattice.hpp"
-#include "sinew/rig/rig_reader.hpp"
+#include "sinew/model/rig_reader.hpp"
 
 namespace sinew {
 namespace {

@@ -6,7 +6,7 @@
 #include "material_battery.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/material/catalog.hpp"
-#include "sinew/material/corotational.hpp"
+#include "sinew/material/families/corotational.hpp"
 #include "sinew/material/mixing.hpp"
 #include "sinew/material/nonlinearity.hpp"
 #include "sinew/material/normalization.hpp"

@@ -3,9 +3,9 @@
 
 #include <numbers>
 
-#include "sinew/fem/elastic_form.hpp"
-#include "sinew/fem/kinematics.hpp"
-#include "sinew/material/corotational.hpp"
+#include "sinew/forms/elastic_form.hpp"
+#include "sinew/motion/prescribed_motion.hpp"
+#include "sinew/material/families/corotational.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/mesh/selection.hpp"
 #include "sinew/solver/newton.hpp"

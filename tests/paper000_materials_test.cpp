@@ -10,7 +10,7 @@
 #include "sinew/core/svd.hpp"
 #include "sinew/material/catalog.hpp"
 #include "sinew/material/lame.hpp"
-#include "sinew/material/paper000.hpp"
+#include "sinew/material/families.hpp"
 
 namespace sinew {
 namespace {

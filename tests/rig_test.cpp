@@ -10,15 +10,15 @@
 
 #include "dynamics_test_support.hpp"
 #include "sinew/core/error.hpp"
-#include "sinew/fem/discretization.hpp"
-#include "sinew/fem/elastic_form.hpp"
+#include "sinew/element/discretization.hpp"
+#include "sinew/forms/elastic_form.hpp"
 #include "sinew/material/spec.hpp"
 #include "sinew/mesh/lattice.hpp"
-#include "sinew/rig/bone_spring_form.hpp"
-#include "sinew/rig/rig_reader.hpp"
-#include "sinew/scene/elbow_experiment.hpp"
-#include "sinew/scene/scene.hpp"
-#include "sinew/scene/simulation.hpp"
+#include "sinew/forms/bone_spring_form.hpp"
+#include "sinew/model/rig_reader.hpp"
+#include "experiments/elbow_experiment.hpp"
+#include "sinew/model/scene.hpp"
+#include "sinew/run/simulation.hpp"
 #include "sinew/solver/newton.hpp"
 
 namespace sinew {

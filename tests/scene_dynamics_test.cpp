@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "io_test_support.hpp"
-#include "sinew/scene/scene.hpp"
-#include "sinew/scene/simulation.hpp"
+#include "sinew/model/scene.hpp"
+#include "sinew/run/simulation.hpp"
 
 namespace sinew {
 namespace {
@@ -30,7 +30,7 @@ TEST(SceneDynamics, FieldsAndDefaults) {
   ASSERT_TRUE(d.dynamics.has_value());
   EXPECT_EQ(d.dynamics->time_step, 0.01);
   EXPECT_EQ(d.dynamics->substeps, 1);
-  EXPECT_EQ(d.dynamics->integrator, Integrator::BackwardEuler);
+  EXPECT_EQ(d.dynamics->integrator, DynamicsScheme::BackwardEuler);
   EXPECT_EQ(d.dynamics->mass, MassKind::Lumped);
   EXPECT_EQ(d.dynamics->rayleigh_alpha, 0.0);
   EXPECT_EQ(d.dynamics->rayleigh_beta, 0.0);
@@ -49,7 +49,7 @@ TEST(SceneDynamics, FieldsAndDefaults) {
       {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "stiffness": 1e6}]})"),
                                 "s.json");
   EXPECT_EQ(all.dynamics->substeps, 4);
-  EXPECT_EQ(all.dynamics->integrator, Integrator::SemiImplicit);
+  EXPECT_EQ(all.dynamics->integrator, DynamicsScheme::SemiImplicit);
   EXPECT_EQ(all.dynamics->mass, MassKind::Consistent);
   EXPECT_EQ(all.dynamics->rayleigh_alpha, 0.5);
   EXPECT_EQ(all.dynamics->rayleigh_beta, 0.01);

@@ -6,8 +6,8 @@
 
 #include "io_test_support.hpp"
 #include "sinew/io/surface_reader.hpp"
-#include "sinew/scene/scene.hpp"
-#include "sinew/scene/simulation.hpp"
+#include "sinew/model/scene.hpp"
+#include "sinew/run/simulation.hpp"
 
 namespace sinew {
 namespace {

@@ -8,8 +8,8 @@
 #include <numbers>
 
 #include "io_test_support.hpp"
-#include "sinew/fem/discretization.hpp"
-#include "sinew/scene/scene.hpp"
+#include "sinew/element/discretization.hpp"
+#include "sinew/model/scene.hpp"
 
 namespace sinew {
 namespace {

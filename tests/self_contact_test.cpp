@@ -7,14 +7,14 @@
 #include <random>
 
 #include "dynamics_test_support.hpp"
-#include "sinew/contact/self_contact_form.hpp"
+#include "sinew/forms/self_contact_form.hpp"
 #include "sinew/core/error.hpp"
-#include "sinew/fem/discretization.hpp"
-#include "sinew/fem/elastic_form.hpp"
+#include "sinew/element/discretization.hpp"
+#include "sinew/forms/elastic_form.hpp"
 #include "sinew/material/spec.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/solver/newton.hpp"
-#include "sinew/solver/time_stepper.hpp"
+#include "sinew/integrator/time_stepper.hpp"
 
 namespace sinew {
 namespace {
@@ -260,7 +260,7 @@ TEST(SelfContactSolve, TimeSteppedBlocksCollideWithoutPassingThrough) {
       if (in_b(m, i)) v(3 * i) = -1.0;  // the 0.05 m gap closes after 5 steps
     double worst_overlap = 0.0;
     for (int step = 1; step <= 20; ++step) {
-      const StepReport r = stepper.step(x, v, step - 1, step, *linear);
+      const StepStats r = stepper.step(x, v, step - 1, step, *linear);
       EXPECT_TRUE(r.converged) << (contact ? "contact" : "free") << " step " << step << ": " << r.failure;
       if (!r.converged) break;
       // Interpenetration: the deepest sample inside the other block (detection at x).

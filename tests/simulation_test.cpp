@@ -11,10 +11,12 @@
 #include <sys/wait.h>
 
 #include "io_test_support.hpp"
-#include "sinew/fem/mass.hpp"
+#include "sinew/element/mass.hpp"
 #include "sinew/io/mesh_reader.hpp"
 #include "sinew/mesh/lattice.hpp"
-#include "sinew/scene/simulation.hpp"
+#include "sinew/integrator/quasistatic_integrator.hpp"
+#include "sinew/model/model.hpp"
+#include "sinew/run/simulation.hpp"
 
 namespace sinew {
 namespace {

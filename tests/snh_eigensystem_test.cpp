@@ -11,7 +11,7 @@
 
 #include "material_test_support.hpp"
 #include "sinew/core/svd.hpp"
-#include "sinew/material/paper000.hpp"
+#include "sinew/material/families.hpp"
 
 namespace sinew {
 namespace {

@@ -8,10 +8,10 @@
 #include <fmt/format.h>
 
 #include "io_test_support.hpp"
-#include "sinew/fem/embedding.hpp"
+#include "sinew/element/embedding.hpp"
 #include "sinew/io/mesh_reader.hpp"
 #include "sinew/io/surface_reader.hpp"
-#include "sinew/scene/simulation.hpp"
+#include "sinew/run/simulation.hpp"
 
 namespace sinew {
 namespace {

@@ -10,8 +10,8 @@
 #include "sinew/core/error.hpp"
 #include "sinew/material/catalog.hpp"
 #include "sinew/material/lame.hpp"
-#include "sinew/material/table1.hpp"
-#include "sinew/material/table1/divided_difference.hpp"
+#include "sinew/material/families.hpp"
+#include "sinew/material/divided_difference.hpp"
 
 namespace sinew {
 namespace {

@@ -5,8 +5,9 @@
 #include <fmt/format.h>
 
 #include "io_test_support.hpp"
+#include "sinew/element/mesh_validation.hpp"
 #include "sinew/io/mesh_reader.hpp"
-#include "sinew/mesh/reorient.hpp"
+#include "sinew/element/reorient.hpp"
 
 namespace sinew {
 namespace {
@@ -148,9 +149,9 @@ TEST(TetMeshReader, ReorientFlipsMirroredHexesAndTets) {
   hex.vertices << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1;
   hex.elements.resize(1, 8);
   hex.elements << 4, 5, 6, 7, 0, 1, 2, 3;  // top face first: mirrored
-  EXPECT_THROW(hex.validate("hex"), Error);
+  EXPECT_THROW(validate_mesh(hex, "hex"), Error);
   EXPECT_EQ(reorient_inverted_elements(hex), 1);
-  hex.validate("hex");
+  validate_mesh(hex, "hex");
   EXPECT_EQ(reorient_inverted_elements(hex), 0);
 }
 

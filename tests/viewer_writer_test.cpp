@@ -14,8 +14,8 @@
 #include "sinew/io/gltf_writer.hpp"
 #include "sinew/io/viewer_writer.hpp"
 #include "sinew/mesh/shape_mesh.hpp"
-#include "sinew/scene/run_viewer.hpp"
-#include "sinew/scene/simulation.hpp"
+#include "sinew/run/run_viewer.hpp"
+#include "sinew/run/simulation.hpp"
 
 namespace sinew {
 namespace {

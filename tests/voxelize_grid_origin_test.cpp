@@ -9,7 +9,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/io/surface_reader.hpp"
 #include "sinew/mesh/voxelize.hpp"
-#include "sinew/scene/scene.hpp"
+#include "sinew/model/scene.hpp"
 
 namespace sinew {
 namespace {

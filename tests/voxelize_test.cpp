@@ -12,11 +12,12 @@
 #include <set>
 
 #include "io_test_support.hpp"
+#include "sinew/element/mesh_validation.hpp"
 #include "sinew/io/mesh_reader.hpp"
 #include "sinew/io/surface_reader.hpp"
 #include "sinew/mesh/inside_test.hpp"
 #include "sinew/mesh/voxelize.hpp"
-#include "sinew/scene/simulation.hpp"
+#include "sinew/run/simulation.hpp"
 
 namespace sinew {
 namespace {
@@ -62,7 +63,7 @@ TEST(Voxelize, VolumeConvergesToTheSurfaceVolume) {
     VoxelizeOptions cover = centre;
     cover.keep_crossing = true;
     const VolumeMesh c = voxelize_surface(shape, centre), k = voxelize_surface(shape, cover);
-    c.validate("centre"), k.validate("cover");
+    validate_mesh(c, "centre"), validate_mesh(k, "cover");
     const double vc = lattice_volume(c), vk = lattice_volume(k);
     const double error = std::abs(vc - blob.volume()) / blob.volume();
     std::printf("  resolution %2d: centre cells %5ld volume %.5f (error %.2f%%), covering cells %5ld volume %.5f, surface %.5f\n",

@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "sinew/core/error.hpp"
-#include "sinew/scene/simulation.hpp"
+#include "sinew/run/simulation.hpp"
 
 namespace sinew::cli {
 namespace {
@@ -37,15 +37,18 @@ void run(const Options& o, int& exit_code) {
   ro.resume = o.resume;
   const bool tty = isatty(STDERR_FILENO);
   if (!o.quiet) {
-    // Constrained dynamics (paper 001) reports SQP and PGS iterations in the same slots.
+    // Energy-limited dynamics (paper 001) has no Newton iterations: it reports its SQP and PGS
+    // iteration counters instead.
     const bool sqp = scene.constraints.has_value();
-    ro.progress = [tty, outer = sqp ? "SQP" : "Newton", inner = sqp ? "PGS" : "linear"](const ProgressEvent& e) {
+    ro.progress = [tty, sqp](const ProgressEvent& e) {
       if (e.frame_done) {
         const FrameRecord& r = *e.record;
         if (tty) fmt::print(stderr, "\r\033[K");
+        const double outer = sqp ? r.counter("sqp_iterations") : r.newton_iterations;
+        const double inner = sqp ? r.counter("pgs_iterations") : r.linear_iterations;
         fmt::print(stderr, "frame {}/{}: {} {}, {} {} iterations, residual {:.3e}, volume {:.6g}, {:.2f} s{}\n", e.frame,
-                   e.frames, r.newton_iterations, outer, r.linear_iterations, inner, r.residual, r.volume, r.seconds,
-                   r.converged ? "" : "  NOT CONVERGED: " + r.failure);
+                   e.frames, outer, sqp ? "SQP" : "Newton", inner, sqp ? "PGS" : "linear", r.residual, r.volume,
+                   r.seconds, r.converged ? "" : "  NOT CONVERGED: " + r.failure);
       } else if (tty) {
         fmt::print(stderr, "\r\033[Kframe {}/{}  Newton {}  residual {:.3e}  elapsed {:.1f} s", e.frame, e.frames,
                    e.newton_iteration, e.residual, e.elapsed);

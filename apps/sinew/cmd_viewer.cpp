@@ -4,8 +4,8 @@
 #include <memory>
 
 #include "cli.hpp"
-#include "sinew/scene/run_viewer.hpp"
-#include "sinew/scene/scene.hpp"
+#include "sinew/run/run_viewer.hpp"
+#include "sinew/model/scene.hpp"
 
 namespace sinew::cli {
 

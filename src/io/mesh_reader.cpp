@@ -5,7 +5,8 @@
 #include <fmt/format.h>
 
 #include "sinew/core/error.hpp"
-#include "sinew/mesh/reorient.hpp"
+#include "sinew/element/reorient.hpp"
+#include "sinew/element/mesh_validation.hpp"
 
 namespace sinew {
 
@@ -34,7 +35,7 @@ VolumeMesh read_volume_mesh(const std::filesystem::path& path, const MeshReadOpt
                 path.string());
   }
   if (options.reorient_inverted) reorient_inverted_elements(mesh);
-  mesh.validate(path.string());
+  validate_mesh(mesh, path.string());
   return mesh;
 }
 

@@ -9,8 +9,8 @@
 namespace sinew {
 
 MaterialCatalog::MaterialCatalog() {
-  register_paper000_materials(families_);
-  register_table1_materials(families_);
+  register_stable_neo_hookean_families(families_);
+  register_isotropic_families(families_);
   std::set<std::string> seen;
   for (const auto& f : families_) {
     if (!seen.insert(f.name).second) throw Error("material registered twice", f.name);

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <string>
 
-#include "sinew/constraints/paper001_experiments.hpp"
+#include "experiments/paper001_experiments.hpp"
 
 namespace sinew {
 namespace {

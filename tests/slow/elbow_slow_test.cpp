@@ -21,7 +21,7 @@
 #include <string>
 #include <tbb/global_control.h>
 
-#include "sinew/scene/elbow_experiment.hpp"
+#include "experiments/elbow_experiment.hpp"
 
 namespace sinew {
 namespace {

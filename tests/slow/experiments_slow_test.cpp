@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "sinew/scene/experiments.hpp"
+#include "experiments/paper000_experiments.hpp"
 
 namespace sinew {
 namespace {

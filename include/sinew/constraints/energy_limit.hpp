@@ -1,7 +1,7 @@
 #pragma once
 // Energy-limiting constraints (paper 001 §4): per element C_e = 1 - U_e/U_max >= 0 (Eq. 14)
 // and its Jacobian dC_e/dx = -dU_e/dx / U_max (Eq. 15), exact or warped-force.
-#include "sinew/constraints/element_energy_model.hpp"
+#include "sinew/forms/element_form.hpp"
 
 namespace sinew {
 
@@ -10,10 +10,10 @@ struct EnergyLimit {
   JacobianKind jacobian = JacobianKind::Exact;
 };
 
-double energy_constraint(const ElementEnergyModel& model, Eigen::Index e, const Eigen::VectorXd& x,
+double energy_constraint(const ElementForm& form, Eigen::Index e, const Eigen::VectorXd& x,
                          double max_energy);
 // Over the element's nodes (3 * nodes entries, node-major).
-Eigen::VectorXd energy_constraint_jacobian(const ElementEnergyModel& model, Eigen::Index e,
+Eigen::VectorXd energy_constraint_jacobian(const ElementForm& form, Eigen::Index e,
                                            const Eigen::VectorXd& x, const EnergyLimit& limit);
 
 }  // namespace sinew

@@ -8,8 +8,8 @@
 #include <memory>
 #include <vector>
 
-#include "sinew/constraints/contact.hpp"
-#include "sinew/contact/obstacle.hpp"
+#include "sinew/constraints/contact_constraints.hpp"
+#include "sinew/motion/obstacle.hpp"
 
 namespace sinew {
 

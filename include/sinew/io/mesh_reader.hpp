@@ -14,7 +14,7 @@
 //          element types (the boundary's triangles, lines, points) skipped.
 //   .node/.ele  TetGen: either name reads both files (same stem), 0- or 1-based.
 // A mesh is all hexahedra or all tetrahedra. Inverted elements are rejected with their index
-// unless `reorient_inverted` renumbers them (sinew/mesh/reorient.hpp). See docs/file-formats.md.
+// unless `reorient_inverted` renumbers them (sinew/element/reorient.hpp). See docs/file-formats.md.
 #include <filesystem>
 
 #include "sinew/mesh/volume_mesh.hpp"

@@ -75,7 +75,7 @@ void check_function_key(const MaterialInfo& info, const std::string& key, const 
 MaterialParameters complete_parameters(const MaterialInfo& info, const MaterialParameters& given);
 
 // Registration, one function per group of families (each in its own source file).
-void register_paper000_materials(std::vector<MaterialInfo>& out);
-void register_table1_materials(std::vector<MaterialInfo>& out);
+void register_stable_neo_hookean_families(std::vector<MaterialInfo>& out);
+void register_isotropic_families(std::vector<MaterialInfo>& out);
 
 }  // namespace sinew

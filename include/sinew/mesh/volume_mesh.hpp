@@ -20,9 +20,9 @@ struct VolumeMesh {
   Eigen::Index num_vertices() const { return vertices.rows(); }
   Eigen::Index num_elements() const { return elements.rows(); }
 
-  // Rejects out-of-range indices, repeated nodes, non-finite coordinates and inverted or
-  // degenerate elements (rest Jacobian at every quadrature point must be positive); the
-  // sinew::Error names `source` and the first bad element.
+  // Rejects out-of-range indices, repeated nodes and non-finite coordinates; the sinew::Error
+  // names `source` and the first bad element. validate_mesh (element/mesh_validation.hpp) adds
+  // the element shapes (inverted or degenerate elements), which needs the quadrature rules.
   void validate(const std::string& source) const;
 
   // Rest positions flattened as x[3 v + i].

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "sinew/solver/linear_operator.hpp"
+#include "sinew/linalg/linear_operator.hpp"
 
 namespace sinew {
 

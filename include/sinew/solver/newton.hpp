@@ -4,7 +4,7 @@
 #include <string>
 
 #include "sinew/solver/linear_solver.hpp"
-#include "sinew/solver/problem.hpp"
+#include "sinew/assembly/problem.hpp"
 
 namespace sinew {
 

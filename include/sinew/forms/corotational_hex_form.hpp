@@ -1,0 +1,64 @@
+#pragma once
+// Corotational linear hexahedra (paper 001 §3) as a form: Hookean stiffness K_e integrated by
+// 2x2x2 Gauss (Eq. 10), one rotation per element from the polar decomposition of the deformation
+// gradient of the hexahedron's innermost tetrahedron (Fig. 2), stiffness warped as R K_e R^T.
+// As in corotational FEM (and paper 001 Eq. 17), the form's gradient is the warped elastic force
+// and its Hessian the warped stiffness: both hold the rotation fixed, so they are not the exact
+// derivatives of the energy (exact_derivatives() is false); the exact element gradient is
+// element_gradient(e, x, JacobianKind::Exact).
+#include <memory>
+#include <vector>
+
+#include "sinew/forms/element_form.hpp"
+#include "sinew/material/lame.hpp"
+
+namespace sinew {
+
+// Coefficients of the isotropic material matrix (paper 001 §4.2): E1 = Y(1-nu)/((1+nu)(1-2nu)),
+// E2 = Y nu/((1+nu)(1-2nu)), E3 = Y/(2(1+nu)), i.e. lambda + 2 mu, lambda and mu.
+struct HookeCoefficients {
+  double E1 = 0.0, E2 = 0.0, E3 = 0.0;
+  static HookeCoefficients from_young_poisson(double young, double poisson);
+};
+
+// The innermost tetrahedron of the 5-tetrahedron (alternating-corner) subdivision of a
+// VTK-ordered hexahedron: the regular tetrahedron on corners 0, 2, 5, 7, which touches every
+// face of the hexahedron and so sees all of its deformation modes.
+inline constexpr int kInnermostTet[4] = {0, 2, 5, 7};
+
+class CorotationalHexForm final : public ElementForm {
+ public:
+  CorotationalHexForm(std::shared_ptr<const Discretization> disc, HookeCoefficients coefficients);
+
+  std::string name() const override { return "corotational-hex"; }
+  const Discretization& discretization() const override { return *disc_; }
+  const HookeCoefficients& coefficients() const { return c_; }
+
+  // R_e from the polar decomposition of the innermost tetrahedron's F.
+  Mat3 rotation(Eigen::Index e, const Eigen::VectorXd& x) const;
+  // Rest-frame stiffness K_e (24 x 24, node-major), Eq. 10.
+  const Eigen::MatrixXd& element_stiffness(Eigen::Index e) const { return K_[e]; }
+
+  // U_e = sum_q w_q psi(eps_q), eps = sym(R^T G - I) (Eq. 11, 13), psi = 1/2 eps : C : eps.
+  double element_value(Eigen::Index e, const Eigen::VectorXd& x) const override;
+  Eigen::VectorXd element_gradient(Eigen::Index e, const Eigen::VectorXd& x, JacobianKind kind) const override;
+  bool supports(JacobianKind) const override { return true; }
+  // R K_e R^T (the rotation's change neglected, as in the warped stiffness).
+  Eigen::MatrixXd element_hessian(Eigen::Index e, const Eigen::VectorXd& x) const override;
+
+  // Form: E = sum_e U_e; gradient sum_e R K_e (R^T x_e - X_e) (the warped force, Eq. 17);
+  // Hessian sum_e R K_e R^T.
+  double value(const Eigen::VectorXd& x) const override;
+  void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override;
+  void add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override;
+  bool exact_derivatives() const override { return false; }
+
+ private:
+  std::shared_ptr<const Discretization> disc_;
+  HookeCoefficients c_;
+  std::vector<Eigen::MatrixXd> K_;
+  Eigen::VectorXd rest_;                // rest positions X
+  std::vector<Mat3> tet_rest_inverse_;  // (X_2 - X_0, X_5 - X_0, X_7 - X_0)^-1 per element
+};
+
+}  // namespace sinew

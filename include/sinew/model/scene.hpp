@@ -1,0 +1,116 @@
+#pragma once
+// A scene file (JSON, docs/scene-format.md): mesh or shape, material, boundary conditions,
+// loads, solver settings, frames and outputs. load_scene validates every field and names the
+// file, JSON path and reason of the first problem.
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "sinew/motion/prescribed_motion.hpp"
+#include "sinew/model/dynamics_spec.hpp"
+#include "sinew/material/spec.hpp"
+#include "sinew/mesh/selection.hpp"
+#include "sinew/mesh/volume_mesh.hpp"
+#include "sinew/model/scene_constraints.hpp"
+#include "sinew/model/surface_sources.hpp"
+#include "sinew/solver/linear_solver.hpp"
+#include "sinew/solver/newton.hpp"
+
+namespace sinew {
+
+struct Rig;                  // sinew/motion/rig.hpp
+struct SelfContactSettings;  // sinew/forms/self_contact_form.hpp
+
+struct BoxShape {
+  Eigen::Vector3d lo, hi;
+};
+struct CylinderShape {
+  Eigen::Vector3d center;
+  double radius = 0.0, length = 0.0;
+  int axis = 0;
+};
+struct SphereShape {
+  Eigen::Vector3d center;
+  double radius = 0.0;
+};
+// Voxel occupancy: dims cells over [lo, hi], occupancy in x-fastest order.
+struct VoxelShape {
+  Eigen::Vector3d lo, hi;
+  Eigen::Vector3i dims;
+  std::vector<int> occupancy;
+};
+struct MeshFile {
+  std::filesystem::path path;  // resolved against the scene's folder
+  bool reorient = false;       // renumber inverted elements instead of rejecting them
+};
+
+struct MeshSpec {
+  std::variant<BoxShape, CylinderShape, SphereShape, VoxelShape, MeshFile, SurfaceVoxels, SurfaceTetrahedra> source;
+  // Lattice resolution: explicit cell counts (box), or a cell size, or the number of cells
+  // along the longest side of the shape's bounding box.
+  std::optional<Eigen::Vector3i> cells;
+  std::optional<double> cell_size;
+  std::optional<int> resolution;
+  ElementKind element = ElementKind::Hex8;  // lattices only: "tet" splits each hex into six
+  // A closed surface bound to the mesh and written deformed every frame (scene_surface.hpp).
+  std::optional<std::filesystem::path> embed;
+};
+
+struct BoundarySpec {
+  std::string name;
+  VertexSelector select;
+  RigidMotion motion;
+};
+
+struct PointLoad {
+  VertexSelector select;
+  Eigen::Vector3d force;  // per selected vertex
+};
+struct Traction {
+  VertexSelector select;  // boundary faces whose vertices are all selected
+  Eigen::Vector3d traction;  // force per unit rest area
+};
+
+struct SolverSpec {
+  NewtonSettings newton;
+  LinearSolverSettings linear;
+  Projection projection = Projection::Clamp;
+};
+
+struct OutputSpec {
+  bool vtu = true;
+  bool obj = true;
+  int every = 1;
+};
+
+struct Scene {
+  std::filesystem::path file;  // where it was loaded from
+  std::string description;     // free text, echoed to summary.json
+  MeshSpec mesh;
+  MaterialSpec material;
+  double density = 1000.0;
+  std::vector<BoundarySpec> boundary;
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
+  std::vector<PointLoad> point_loads;
+  std::vector<Traction> tractions;
+  SolverSpec solver;
+  int frames = 1;
+  OutputSpec output;
+  std::optional<ConstraintsSpec> constraints;  // dynamics with paper 001 constraints (docs/energy-limits.md)
+  std::optional<DynamicsSpec> dynamics;  // absent: quasistatic load stepping
+  std::vector<ObstacleSpec> obstacles;
+  std::shared_ptr<const Rig> rig;                           // "rig" (scene_rig.hpp)
+  std::shared_ptr<const SelfContactSettings> self_contact;  // "self_contact" (scene_rig.hpp)
+};
+
+Scene load_scene(const std::filesystem::path& file);
+Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file);
+
+// The mesh the scene describes (lattice generated or file read), validated.
+VolumeMesh build_scene_mesh(const Scene& scene);
+
+}  // namespace sinew

@@ -1,0 +1,81 @@
+#pragma once
+// A sparse Cholesky factorisation (CHOLMOD, supernodal) of an earlier matrix, used for solves
+// with the current one: directly while it is of the current matrix, else by CG preconditioned
+// with it, which stays exact to the CG tolerance. It is refreshed when the CG work it has caused
+// reaches the cost of a new factorisation (rent-or-buy; the costs come from CHOLMOD's own flop
+// and nonzero counts, so the choice is deterministic), or when one solve needs more CG
+// iterations than allowed. It also keeps, per constraint, the columns P^-1 J_i^T computed with
+// it (the constrained stepper's LCP matrix), dropped when it is refreshed.
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+#include <memory>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace sinew {
+
+struct FactorizationReuse {
+  bool enabled = true;
+  // A lagged factorisation is refreshed at the start of a step once the CG iterations spent
+  // since it was made cost about as much as a factorisation (estimated from CHOLMOD's flop and
+  // nonzero counts, so the choice is deterministic), and in any step where one solve needs more
+  // than `max_cg_iterations`.
+  int max_cg_iterations = 12;
+  double cg_tolerance = 1e-6;         // relative residual of the preconditioned CG solves
+  int max_splitting_iterations = 30;  // LCP splitting sweeps before W is formed exactly
+  // A column P^-1 J_i^T is kept while the factorisation lasts and reused while row i's Jacobian
+  // stays within this relative distance of the one it was computed for (0: exact match only).
+  double column_reuse_tolerance = 0.1;
+};
+
+class LaggedFactorization {
+ public:
+  struct Column {
+    std::vector<std::pair<Eigen::Index, double>> jacobian;  // the row J~_i the column is for
+    Eigen::VectorXd values;                                 // P^-1 J~_i^T
+  };
+  struct Counters {
+    int factorizations = 0, cg_iterations = 0;
+    double factor_seconds = 0.0, solve_seconds = 0.0;
+  };
+
+  LaggedFactorization();
+  ~LaggedFactorization();
+
+  // Makes M the current matrix (kept by pointer: it must outlive its use) and factorises it
+  // when reuse is off, when there is no factorisation yet, or when the budget is spent. Every
+  // matrix given here must have the same sparsity pattern (one symbolic analysis).
+  void use(const Eigen::SparseMatrix<double>& M, const FactorizationReuse& reuse, Counters& counters);
+  // Factorises the current matrix now.
+  void refactor(Counters& counters);
+  // Whether the factorisation is of the current matrix.
+  bool exact() const { return exact_; }
+  // out = M^-1 r for the current M: directly when exact, else by preconditioned CG from `out`
+  // (when `guess`) or from zero; refactorises and solves directly when CG needs too long.
+  void solve(const Eigen::VectorXd& r, Eigen::VectorXd& out, bool guess, Counters& counters);
+  // P^-1 B with the factorisation at hand (one multi-right-hand-side solve).
+  Eigen::MatrixXd apply_inverse(const Eigen::MatrixXd& B) const;
+  // CG iterations that cost about one factorisation: flops of the factorisation over those of a
+  // CG iteration (a triangular solve pair, 4 nnz(L), and a product with M, 2 nnz(M)). Per flop
+  // the factorisation's dense supernode updates run faster than the solves, but a refresh also
+  // drops the cached columns; flops alone measured best (x1 against x0.5 and x3 on the
+  // paper-size benchmark of docs/performance.md).
+  double refresh_cost() const { return cg_iterations_per_factorization_; }
+  std::unordered_map<long, Column>& columns() { return columns_; }
+
+ private:
+  // CG from `out` (or zero); false when it did not reach the tolerance within the budget.
+  bool preconditioned_cg(const Eigen::VectorXd& r, Eigen::VectorXd& out, bool guess, Counters& counters);
+
+  struct Cholmod;
+  std::unique_ptr<Cholmod> cholmod_;
+  const Eigen::SparseMatrix<double>* current_ = nullptr;
+  FactorizationReuse reuse_;
+  bool analysed_ = false, valid_ = false, exact_ = false;
+  double cg_iterations_per_factorization_ = 0.0;
+  int cg_iterations_since_ = 0;
+  std::unordered_map<long, Column> columns_;
+};
+
+}  // namespace sinew

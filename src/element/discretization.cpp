@@ -1,0 +1,84 @@
+#include "sinew/element/discretization.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+
+#include "sinew/element/element_rule.hpp"
+#include "sinew/element/mesh_validation.hpp"
+
+namespace sinew {
+namespace {
+
+// Greedy colouring of elements by shared vertices, in element order.
+std::vector<std::vector<Eigen::Index>> color_elements(const VolumeMesh& mesh) {
+  std::vector<std::vector<Eigen::Index>> vertex_elements(mesh.num_vertices());
+  for (Eigen::Index e = 0; e < mesh.num_elements(); ++e)
+    for (Eigen::Index a = 0; a < mesh.elements.cols(); ++a) vertex_elements[mesh.elements(e, a)].push_back(e);
+  std::vector<int> color(mesh.num_elements(), -1);
+  std::vector<std::vector<Eigen::Index>> groups;
+  std::vector<char> used;
+  for (Eigen::Index e = 0; e < mesh.num_elements(); ++e) {
+    used.assign(groups.size() + 1, 0);
+    for (Eigen::Index a = 0; a < mesh.elements.cols(); ++a)
+      for (Eigen::Index other : vertex_elements[mesh.elements(e, a)])
+        if (color[other] >= 0) used[color[other]] = 1;
+    int c = 0;
+    while (used[c]) ++c;
+    color[e] = c;
+    if (c == static_cast<int>(groups.size())) groups.emplace_back();
+    groups[c].push_back(e);
+  }
+  return groups;
+}
+
+}  // namespace
+
+Discretization::Discretization(VolumeMesh mesh, const std::string& source) : mesh_(std::move(mesh)) {
+  validate_mesh(mesh_, source);
+  const QuadratureRule& rule = quadrature_rule(mesh_.kind);
+  nodes_ = nodes_per_element(mesh_.kind);
+  qpoints_ = static_cast<int>(rule.weights.size());
+  dN_dX_.reserve(mesh_.num_elements() * qpoints_);
+  weight_.reserve(mesh_.num_elements() * qpoints_);
+  for (Eigen::Index e = 0; e < mesh_.num_elements(); ++e) {
+    Eigen::MatrixX3d X(nodes_, 3);
+    for (int a = 0; a < nodes_; ++a) X.row(a) = mesh_.vertices.row(mesh_.elements(e, a));
+    for (int q = 0; q < qpoints_; ++q) {
+      const Mat3 J = X.transpose() * rule.dN_dxi[q];  // dX/dxi
+      dN_dX_.push_back(rule.dN_dxi[q] * J.inverse());
+      weight_.push_back(rule.weights[q] * J.determinant());
+    }
+  }
+  colors_ = color_elements(mesh_);
+}
+
+double Discretization::rest_volume(Eigen::Index e) const {
+  double v = 0.0;
+  for (int q = 0; q < qpoints_; ++q) v += weight(e, q);
+  return v;
+}
+
+Eigen::Matrix3Xd Discretization::element_positions(Eigen::Index e, const Eigen::VectorXd& x) const {
+  Eigen::Matrix3Xd xe(3, nodes_);
+  for (int a = 0; a < nodes_; ++a) xe.col(a) = x.segment<3>(3 * mesh_.elements(e, a));
+  return xe;
+}
+
+Mat3 Discretization::deformation_gradient(Eigen::Index e, int q, const Eigen::VectorXd& x) const {
+  return element_positions(e, x) * gradients(e, q);
+}
+
+void add_element_hessian(const Eigen::MatrixX3d& D, const Mat9& H, double w, Eigen::MatrixXd& K) {
+  const Eigen::Index n = D.rows();
+  // T = H B with B(3k+i, 3b+i) = D(b,k): T(:, 3b+j) = sum_l H(:, 3l+j) D(b,l).
+  Eigen::Matrix<double, 9, Eigen::Dynamic> T(9, 3 * n);
+  for (Eigen::Index b = 0; b < n; ++b)
+    for (int j = 0; j < 3; ++j)
+      T.col(3 * b + j) = H.col(j) * D(b, 0) + H.col(3 + j) * D(b, 1) + H.col(6 + j) * D(b, 2);
+  // K += w B^T T: row 3a+i of B^T T is sum_k D(a,k) T(3k+i, :).
+  for (Eigen::Index a = 0; a < n; ++a)
+    for (int i = 0; i < 3; ++i)
+      K.row(3 * a + i) += w * (D(a, 0) * T.row(i) + D(a, 1) * T.row(3 + i) + D(a, 2) * T.row(6 + i));
+}
+
+}  // namespace sinew

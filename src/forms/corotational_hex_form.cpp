@@ -1,0 +1,161 @@
+#include "sinew/forms/corotational_hex_form.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include "sinew/core/error.hpp"
+#include "sinew/core/svd.hpp"
+
+namespace sinew {
+namespace {
+
+Mat3 tet_edges(const Eigen::Matrix3Xd& xe) {
+  Mat3 D;
+  for (int k = 0; k < 3; ++k) D.col(k) = xe.col(kInnermostTet[k + 1]) - xe.col(kInnermostTet[0]);
+  return D;
+}
+
+}  // namespace
+
+HookeCoefficients HookeCoefficients::from_young_poisson(double young, double poisson) {
+  const double s = young / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
+  return {s * (1.0 - poisson), s * poisson, young / (2.0 * (1.0 + poisson))};
+}
+
+CorotationalHexForm::CorotationalHexForm(std::shared_ptr<const Discretization> disc, HookeCoefficients coefficients)
+    : disc_(std::move(disc)), c_(coefficients) {
+  const Discretization& d = *disc_;
+  if (d.mesh().kind != ElementKind::Hex8) throw Error("corotational hexahedra need a hexahedral mesh", "corotational");
+  const double lambda = c_.E2, mu = c_.E3;
+  rest_ = d.mesh().rest_positions();
+  const Eigen::VectorXd& X = rest_;
+  K_.resize(d.num_elements());
+  tet_rest_inverse_.resize(d.num_elements());
+  for (Eigen::Index e = 0; e < d.num_elements(); ++e) {
+    // K_ab = sum_q w (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I), g = dN/dX (Eq. 10).
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(24, 24);
+    for (int q = 0; q < d.quadrature_points(); ++q) {
+      const Eigen::MatrixX3d& G = d.gradients(e, q);
+      const double w = d.weight(e, q);
+      for (int a = 0; a < 8; ++a)
+        for (int b = 0; b < 8; ++b) {
+          const Vec3 ga = G.row(a).transpose(), gb = G.row(b).transpose();
+          K.block<3, 3>(3 * a, 3 * b) +=
+              w * (lambda * ga * gb.transpose() + mu * gb * ga.transpose() + mu * ga.dot(gb) * Mat3::Identity());
+        }
+    }
+    K_[e] = K;
+    tet_rest_inverse_[e] = tet_edges(d.element_positions(e, X)).inverse();
+  }
+}
+
+Mat3 CorotationalHexForm::rotation(Eigen::Index e, const Eigen::VectorXd& x) const {
+  return polar_rotation(tet_edges(disc_->element_positions(e, x)) * tet_rest_inverse_[e]);
+}
+
+double CorotationalHexForm::element_value(Eigen::Index e, const Eigen::VectorXd& x) const {
+  const Discretization& d = *disc_;
+  const Eigen::Matrix3Xd xe = d.element_positions(e, x);
+  const Mat3 Rt = rotation(e, x).transpose();
+  double U = 0.0;
+  for (int q = 0; q < d.quadrature_points(); ++q) {
+    const Mat3 grad_u = Rt * xe * d.gradients(e, q) - Mat3::Identity();  // Eq. 11
+    const Mat3 eps = 0.5 * (grad_u + grad_u.transpose());                 // Eq. 2
+    // psi = 1/2 eps : C : eps = 1/2 lambda tr(eps)^2 + mu eps : eps (the E1/E2/E3 terms of Eq. 16).
+    U += d.weight(e, q) * (0.5 * c_.E2 * eps.trace() * eps.trace() + c_.E3 * eps.squaredNorm());
+  }
+  return U;
+}
+
+Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eigen::VectorXd& x,
+                                                         JacobianKind kind) const {
+  const Discretization& d = *disc_;
+  const Eigen::Matrix3Xd xe = d.element_positions(e, x);
+  const Eigen::Matrix3Xd Xe = d.element_positions(e, rest_);
+  const Mat3 F_tet = tet_edges(xe) * tet_rest_inverse_[e];
+  const SignedSvd svd = signed_svd(F_tet);
+  const Mat3 R = svd.U * svd.V.transpose();
+  // Unrotated displacements d_a = R^T x_a - X_a and rest-frame forces K_e d (Eq. 17 with R fixed:
+  // dU/dx_a = R (K_e d)_a, exactly the warped elastic force for psi = 1/2 eps : C : eps).
+  Eigen::VectorXd disp(24);
+  for (int a = 0; a < 8; ++a) disp.segment<3>(3 * a) = R.transpose() * xe.col(a) - Xe.col(a);
+  const Eigen::VectorXd f = K_[e] * disp;
+  Eigen::VectorXd g(24);
+  for (int a = 0; a < 8; ++a) g.segment<3>(3 * a) = R * f.segment<3>(3 * a);
+  if (kind == JacobianKind::Warped) return g;
+
+  // The rotation's own change (what Eq. 17 discards, Chao et al.): with F_tet = R S and
+  // dR = R [omega]x, (tr(S) I - S) omega = axial(R^T dF - dF^T R), and
+  // dU = -omega . m with m = sum_a (R^T x_a) x f_a, so dU/dF_tet = -R [n]x, n = (tr S I - S)^-1 m.
+  Vec3 m = Vec3::Zero();
+  for (int a = 0; a < 8; ++a) m += (R.transpose() * xe.col(a)).cross(f.segment<3>(3 * a));
+  const Mat3 S = svd.V * svd.sigma.asDiagonal() * svd.V.transpose();
+  const Mat3 M = S.trace() * Mat3::Identity() - S;
+  const Vec3 n = M.fullPivLu().solve(m);
+  const Mat3 dU_dF = -R * cross_matrix(n);
+  // F_tet = sum_k (x_{k} - x_0) row_k(Dm^-1): node gradients are dU_dF times rows of Dm^-1.
+  const Mat3 GT = dU_dF * tet_rest_inverse_[e].transpose();
+  for (int k = 0; k < 3; ++k) {
+    g.segment<3>(3 * kInnermostTet[k + 1]) += GT.col(k);
+    g.segment<3>(3 * kInnermostTet[0]) -= GT.col(k);
+  }
+  return g;
+}
+
+Eigen::MatrixXd CorotationalHexForm::element_hessian(Eigen::Index e, const Eigen::VectorXd& x) const {
+  const Mat3 R = rotation(e, x);
+  Eigen::MatrixXd H(24, 24);
+  for (int a = 0; a < 8; ++a)
+    for (int b = 0; b < 8; ++b) H.block<3, 3>(3 * a, 3 * b) = R * K_[e].block<3, 3>(3 * a, 3 * b) * R.transpose();
+  return H;
+}
+
+double CorotationalHexForm::value(const Eigen::VectorXd& x) const {
+  // Deterministic reduction: the same x gives bit-identical energies.
+  return tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<Eigen::Index>(0, disc_->num_elements(), 64), 0.0,
+      [&](const tbb::blocked_range<Eigen::Index>& r, double acc) {
+        for (Eigen::Index e = r.begin(); e != r.end(); ++e) acc += element_value(e, x);
+        return acc;
+      },
+      std::plus<double>());
+}
+
+// Element terms are computed in parallel into per-element buffers and scattered serially, so
+// the sums are the same whatever the thread count.
+void CorotationalHexForm::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  const Discretization& d = *disc_;
+  const auto& elements = d.mesh().elements;
+  std::vector<Eigen::Matrix<double, 24, 1>> ge(static_cast<size_t>(d.num_elements()));
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, d.num_elements(), 32), [&](const auto& range) {
+    for (Eigen::Index e = range.begin(); e < range.end(); ++e)
+      ge[static_cast<size_t>(e)] = element_gradient(e, x, JacobianKind::Warped);
+  });
+  for (Eigen::Index e = 0; e < d.num_elements(); ++e)
+    for (int a = 0; a < 8; ++a) g.segment<3>(3 * elements(e, a)) += ge[static_cast<size_t>(e)].segment<3>(3 * a);
+}
+
+// Elements of one colour share no vertex, so their blocks are added in parallel.
+void CorotationalHexForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const {
+  const Discretization& d = *disc_;
+  const auto& elements = d.mesh().elements;
+  for (const auto& group : d.color_groups()) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, group.size(), 16), [&](const auto& r) {
+      for (size_t idx = r.begin(); idx != r.end(); ++idx) {
+        const Eigen::Index e = group[idx];
+        const Mat3 R = rotation(e, x);
+        const Eigen::MatrixXd& Ke = K_[e];
+        for (int b = 0; b < 8; ++b)
+          for (int a = 0; a < 8; ++a) {
+            const int va = elements(e, a), vb = elements(e, b);
+            H.add_block_at_slot(vb, H.slot(va, vb), R * Ke.block<3, 3>(3 * a, 3 * b) * R.transpose());
+          }
+      }
+    });
+  }
+}
+
+}  // namespace sinew

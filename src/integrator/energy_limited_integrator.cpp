@@ -1,0 +1,66 @@
+#include "sinew/integrator/energy_limited_integrator.hpp"
+
+#include <fmt/format.h>
+
+#include "sinew/core/error.hpp"
+
+namespace sinew {
+
+EnergyLimitedIntegrator::EnergyLimitedIntegrator(std::unique_ptr<EnergyLimitedStepper> stepper,
+                                                 PrescribedMotion motion, int steps_per_frame)
+    : stepper_(std::move(stepper)), motion_(std::move(motion)), steps_per_frame_(steps_per_frame) {}
+
+StepStats EnergyLimitedIntegrator::advance_frame(State& state, int frame, const IterationProgress& progress) {
+  const EnergyLimitedStepSettings& settings = stepper_->settings();
+  StepStats stats;
+  EnergyLimitedStepTotals totals;
+  const int n = steps_per_frame_;
+  for (int s = 1; s <= n; ++s) {
+    const double frame1 = frame - 1 + double(s) / n;
+    Eigen::VectorXd x_end = state.x;
+    std::vector<char> fixed(static_cast<size_t>(state.x.size()), 0);
+    if (motion_) motion_(frame1, x_end, fixed);
+    const EnergyLimitedStepReport r = stepper_->step(state.x, state.v, fixed, x_end);
+    totals.add(r);
+    stats.substeps += 1;
+    if (progress) progress(s, std::max(r.energy_violation, r.penetration));
+    if (!r.converged && stats.failure.empty())
+      stats.failure = fmt::format(
+          "step {} of the frame: SQP stopped after {} iteration(s) with energy violation {:.3e} (tolerance {:.1e}), "
+          "penetration {:.3e} m (tolerance {:.1e}), PGS residual {:.3e} (tolerance {:.1e})",
+          s, r.sqp_iterations, r.energy_violation, settings.energy_tolerance, r.penetration,
+          settings.contact_tolerance, r.pgs_residual, settings.pgs.tolerance);
+  }
+  stats.converged = stats.failure.empty();
+  stats.residual = std::max(totals.max_energy_violation, totals.max_penetration);
+  stats.energy = stepper_->limited_form().value(state.x);
+  stats.solve_seconds = totals.seconds;
+  stats.add_counter("sqp_iterations", totals.sqp_iterations);
+  stats.add_counter("pgs_iterations", totals.pgs_iterations);
+  stats.add_counter("splitting_iterations", totals.splitting_iterations);
+  stats.add_counter("factorizations", totals.factorizations);
+  stats.add_counter("cg_iterations", totals.cg_iterations);
+  stats.max_counter("max_sqp_iterations_per_step", totals.max_sqp_iterations);
+  stats.max_counter("max_pgs_residual", totals.max_pgs_residual);
+  stats.max_counter("max_energy_violation", totals.max_energy_violation);
+  stats.max_counter("max_penetration", totals.max_penetration);
+  stats.max_counter("max_active_energy_constraints", totals.max_active_energy);
+  stats.max_counter("max_active_contacts", totals.max_active_contacts);
+  stats.max_counter("max_element_energy", totals.max_element_energy);
+  return stats;
+}
+
+nlohmann::json EnergyLimitedIntegrator::checkpoint_state() const {
+  nlohmann::json multipliers = nlohmann::json::array();
+  for (const auto& [key, value] : stepper_->multipliers()) multipliers.push_back({key, value});
+  return {{"multipliers", multipliers}};
+}
+
+void EnergyLimitedIntegrator::restore_state(const nlohmann::json& state, int frame) {
+  std::map<long, double> multipliers;
+  for (const auto& m : state.at("multipliers")) multipliers[m.at(0).get<long>()] = m.at(1).get<double>();
+  stepper_->set_multipliers(std::move(multipliers));
+  stepper_->set_time(frame * frame_duration());
+}
+
+}  // namespace sinew

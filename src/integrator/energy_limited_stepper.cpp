@@ -1,0 +1,467 @@
+#include "sinew/integrator/energy_limited_stepper.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "sinew/core/error.hpp"
+#include "sinew/forms/external_force_form.hpp"
+#include "sinew/solver/lagged_factorization.hpp"
+#include "sinew/solver/serial_openmp.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace sinew {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// One linearised constraint: a sparse row of J over DOFs, its LCP offset and bounds.
+struct Row {
+  std::vector<std::pair<Eigen::Index, double>> jacobian;  // (dof, value)
+  double offset = 0.0;  // q_i
+  LcpRow bounds;
+  long key = 0;         // identifies the constraint across SQP iterations (warm start)
+  bool energy = false;
+};
+
+double row_dot(const Row& r, const Eigen::VectorXd& v) {
+  double s = 0.0;
+  for (const auto& [dof, value] : r.jacobian) s += value * v(dof);
+  return s;
+}
+
+// Two unit tangents orthogonal to n.
+std::pair<Vec3, Vec3> tangents(const Vec3& n) {
+  const Vec3 a = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 t1 = n.cross(a).normalized();
+  return {t1, n.cross(t1)};
+}
+
+// The constraints linearised at x_k (Eq. 22) and the nonlinear violations there: an energy row
+// for every element within `activation` of the limit or active earlier in the step, and a
+// normal row plus two friction rows per contact candidate. Row offsets: C / h for unilateral
+// rows, the current sliding velocity J v_k - t . v_obstacle for friction rows.
+struct Linearisation {
+  std::vector<Row> rows;
+  double energy_violation = 0.0, max_energy = 0.0, penetration = 0.0;
+};
+
+Linearisation linearise_constraints(const ElementForm& model, const EnergyLimitedStepSettings& settings,
+                                    const std::vector<char>& fixed, const ContactProvider& contacts, double time,
+                                    const Eigen::VectorXd& x_k, const Eigen::VectorXd& v_k,
+                                    const std::map<long, char>& ever_active) {
+  const double h = settings.time_step;
+  const Discretization& disc = model.discretization();
+  const auto& elements = disc.mesh().elements;
+  const std::optional<EnergyLimit>& limit = settings.energy_limit;
+  Linearisation lin;
+  std::vector<Row>& rows = lin.rows;
+  // Element energies, and the Jacobians of the elements that get a row, in parallel.
+  std::vector<double> energies(static_cast<size_t>(disc.num_elements()));
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, disc.num_elements(), 32), [&](const auto& range) {
+    for (Eigen::Index e = range.begin(); e < range.end(); ++e) energies[static_cast<size_t>(e)] = model.element_value(e, x_k);
+  });
+  std::vector<Eigen::Index> limited;
+  for (Eigen::Index e = 0; e < disc.num_elements(); ++e) {
+    const double U = energies[static_cast<size_t>(e)];
+    lin.max_energy = std::max(lin.max_energy, U);
+    if (!limit) continue;
+    lin.energy_violation = std::max(lin.energy_violation, U / limit->max_energy - 1.0);
+    if (U >= (1.0 - settings.activation) * limit->max_energy || ever_active.count(e)) limited.push_back(e);
+  }
+  std::vector<Eigen::VectorXd> jacobians(limited.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, limited.size(), 4), [&](const auto& range) {
+    for (size_t i = range.begin(); i < range.end(); ++i) jacobians[i] = energy_constraint_jacobian(model, limited[i], x_k, *limit);
+  });
+  for (size_t l = 0; l < limited.size(); ++l) {
+    const Eigen::Index e = limited[l];
+    const double U = energies[static_cast<size_t>(e)];
+    const Eigen::VectorXd& jac = jacobians[l];
+    Row r;
+    r.energy = true;
+    r.key = e;
+    for (int a = 0; a < disc.nodes(); ++a)
+      for (int i = 0; i < 3; ++i) {
+        const Eigen::Index dof = 3 * elements(e, a) + i;
+        if (!fixed[dof]) r.jacobian.emplace_back(dof, jac(3 * a + i));
+      }
+    if (r.jacobian.empty()) continue;  // a fully fixed element cannot be helped
+    r.offset = (1.0 - U / limit->max_energy) / h;  // C(x_k) / h (Eq. 22)
+    rows.push_back(std::move(r));
+  }
+  const std::vector<ContactCandidate> candidates = contacts ? contacts(x_k, time, time + h) : std::vector<ContactCandidate>{};
+  for (const ContactCandidate& c : candidates) {
+    lin.penetration = std::max(lin.penetration, -c.gap);
+    const Eigen::Index base = 3 * static_cast<Eigen::Index>(c.vertex);
+    if (fixed[base] && fixed[base + 1] && fixed[base + 2]) continue;
+    auto make_row = [&](const Vec3& dir) {
+      Row r;
+      for (int i = 0; i < 3; ++i)
+        if (!fixed[base + i] && dir(i) != 0.0) r.jacobian.emplace_back(base + i, dir(i));
+      return r;
+    };
+    Row normal = make_row(c.normal);
+    normal.key = -1 - 3L * c.vertex;
+    normal.offset = c.gap / h;
+    const int normal_index = static_cast<int>(rows.size());
+    rows.push_back(std::move(normal));
+    if (c.friction > 0.0) {
+      const auto [t1, t2] = tangents(c.normal);
+      int s = 1;
+      for (const Vec3& tangent : {t1, t2}) {
+        Row r = make_row(tangent);
+        r.key = -1 - 3L * c.vertex - s++;
+        r.bounds = {normal_index, c.friction};
+        r.offset = row_dot(r, v_k) - tangent.dot(c.obstacle_velocity);  // target: no sliding
+        rows.push_back(std::move(r));
+      }
+    }
+  }
+  return lin;
+}
+
+}  // namespace
+
+// Two lagged factorisations: one of a backward-Euler matrix A (first SQP iteration) and one of
+// a Lagrangian Hessian H (later iterations; A with the limit-active elements stiffened). Each
+// preconditions the matrices of its kind, which change slowly from step to step, while A and H
+// differ much more from each other.
+struct EnergyLimitedStepper::Factorization {
+  LaggedFactorization backward_euler, lagrangian;
+};
+
+void EnergyLimitedStepTotals::add(const EnergyLimitedStepReport& r) {
+  ++steps;
+  sqp_iterations += r.sqp_iterations;
+  pgs_iterations += r.pgs_iterations;
+  unconverged_steps += r.converged ? 0 : 1;
+  max_sqp_iterations = std::max(max_sqp_iterations, r.sqp_iterations);
+  max_active_energy = std::max(max_active_energy, r.active_energy);
+  max_active_contacts = std::max(max_active_contacts, r.active_contacts);
+  seconds += r.seconds;
+  factorizations += r.factorizations;
+  cg_iterations += r.cg_iterations;
+  splitting_iterations += r.splitting_iterations;
+  if (r.active_energy + r.active_contacts > 0) {
+    ++active_steps;
+    active_rows += r.active_energy + r.active_contacts;
+    active_energy_rows += r.active_energy;
+    active_seconds += r.seconds;
+  }
+  factor_seconds += r.factor_seconds;
+  lcp_seconds += r.lcp_seconds;
+  solve_seconds += r.solve_seconds;
+  w_seconds += r.w_seconds;
+  pgs_seconds += r.pgs_seconds;
+  max_energy_violation = std::max(max_energy_violation, r.energy_violation);
+  max_element_energy = std::max(max_element_energy, r.max_element_energy);
+  max_pgs_residual = std::max(max_pgs_residual, r.pgs_residual);
+  max_penetration = std::max(max_penetration, r.penetration);
+}
+
+EnergyLimitedStepper::EnergyLimitedStepper(std::shared_ptr<Problem> potential, std::shared_ptr<const ElementForm> limited,
+                                           Eigen::VectorXd masses, ContactProvider contacts,
+                                           EnergyLimitedStepSettings settings)
+    : potential_(std::move(potential)),
+      limited_(std::move(limited)),
+      contacts_(std::move(contacts)),
+      settings_(settings),
+      factor_(std::make_unique<Factorization>()) {
+  const Eigen::Index n = limited_->discretization().num_dofs();
+  if (masses.size() * 3 != n || potential_->num_dofs() != n)
+    throw Error("masses and forms do not match the mesh", "energy-limited stepper");
+  if (!(settings_.time_step > 0.0)) throw Error("time step must be positive", "energy-limited stepper");
+  if (settings_.energy_limit && !limited_->supports(settings_.energy_limit->jacobian))
+    throw Error(std::string("the ") + limited_->name() + " model has no " + to_string(settings_.energy_limit->jacobian) +
+                    " Jacobian",
+                "energy-limited stepper");
+  fixed_.assign(static_cast<size_t>(n), 0);
+  potential_->set_fixed(fixed_);  // the raw Hessian: the stepper handles prescribed DOFs itself
+  mass_dofs_.resize(n);
+  for (Eigen::Index v = 0; v < masses.size(); ++v) mass_dofs_.segment<3>(3 * v).setConstant(masses(v));
+}
+
+namespace {
+std::shared_ptr<Problem> elastic_and_external(const std::shared_ptr<ElementForm>& elastic, const Eigen::VectorXd& external) {
+  auto p = std::make_shared<Problem>(elastic->discretization().mesh().num_vertices());
+  p->add_form(elastic);
+  if (external.size() != p->num_dofs()) throw Error("external forces do not match the mesh", "energy-limited stepper");
+  if (external.squaredNorm() > 0.0) p->add_form(std::make_shared<ExternalForceForm>(external));
+  return p;
+}
+}  // namespace
+
+EnergyLimitedStepper::EnergyLimitedStepper(std::shared_ptr<ElementForm> elastic, Eigen::VectorXd masses,
+                                           Eigen::VectorXd external, std::vector<char> fixed, ContactProvider contacts,
+                                           EnergyLimitedStepSettings settings)
+    : EnergyLimitedStepper(elastic_and_external(elastic, external), elastic, std::move(masses), std::move(contacts),
+                           settings) {
+  if (static_cast<Eigen::Index>(fixed.size()) != potential_->num_dofs())
+    throw Error("fixed DOFs do not match the mesh", "energy-limited stepper");
+  fixed_ = std::move(fixed);
+}
+
+EnergyLimitedStepper::~EnergyLimitedStepper() = default;
+
+EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v) {
+  return step(x, v, fixed_, x);
+}
+
+EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v, const std::vector<char>& fixed,
+                                                   const Eigen::VectorXd& x_end) {
+  const auto t_step = Clock::now();
+  const SerialOpenMpScope serial_cholmod;
+  EnergyLimitedStepReport report;
+  const double h = settings_.time_step;
+  const Discretization& disc = limited_->discretization();
+  const auto& elements = disc.mesh().elements;
+  const Eigen::Index n = x.size();
+  const Eigen::VectorXd x0 = x;
+  if (static_cast<Eigen::Index>(fixed.size()) != n || x_end.size() != n)
+    throw Error("fixed DOFs or prescribed positions do not match the mesh", "energy-limited stepper");
+  // Prescribed velocities of the fixed DOFs over the step (zero for a pinned DOF).
+  Eigen::VectorXd v_fixed = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (fixed[i]) v_fixed(i) = (x_end(i) - x0(i)) / h;
+  potential_->begin_solve(x0);  // forms with lagged state (self-contact targets) take this step's
+
+  // ---- unconstrained backward Euler (Eq. 19): (M + h^2 K) v* = M v0 + h f(x0)
+  // The potential's raw Hessian K and forces f = -grad E at x0; the prescribed velocities are
+  // lifted to the right-hand side (b -= A v_fixed) before their rows and columns become identity.
+  Eigen::SparseMatrix<double> A = *potential_->hessian(x0).matrix();
+  const Eigen::VectorXd f0 = -potential_->gradient(x0);
+  A *= h * h;
+  Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * f0;
+  if (v_fixed.squaredNorm() > 0.0) b -= A * v_fixed + mass_dofs_.cwiseProduct(v_fixed);
+  // A = M + h^2 K in K's own storage: rows and columns of fixed DOFs become identity rows.
+  Eigen::Index diagonal_found = 0;
+  for (Eigen::Index k = 0; k < A.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      if (fixed[it.row()] || fixed[it.col()]) it.valueRef() = 0.0;
+      if (it.row() == it.col()) {
+        it.valueRef() += fixed[k] ? 1.0 : mass_dofs_(k);
+        ++diagonal_found;
+      }
+    }
+  if (diagonal_found != n) throw Error("a vertex belongs to no element", "constrained stepper");
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (fixed[i]) b(i) = v_fixed(i);
+  const FactorizationReuse& reuse = settings_.reuse;
+
+  // The matrix of the current SQP iteration (A, or H from the second on) and the lagged
+  // factorisation that solves with it.
+  const Eigen::SparseMatrix<double>* current = &A;
+  LaggedFactorization* F = &factor_->backward_euler;
+  LaggedFactorization::Counters counters;
+  auto use = [&](const Eigen::SparseMatrix<double>& M, LaggedFactorization& slot) {
+    current = &M;
+    F = &slot;
+    F->use(M, reuse, counters);
+  };
+  auto solve = [&](const Eigen::VectorXd& r, Eigen::VectorXd& out, bool guess) { F->solve(r, out, guess, counters); };
+  use(A, factor_->backward_euler);
+  Eigen::VectorXd v_star;
+  solve(b, v_star, false);
+
+  // ---- SQP: linearise at x_k = x0 + h v_k and solve the subproblem
+  //   min 1/2 (v - v*)^T A (v - v*)  s.t.  C(x_k) / h + J_k (v - v_k) >= 0 (+ friction),
+  // whose solution is v = v_k + H^-1 (J^T lambda - g) with g = A (v_k - v*).
+  const std::optional<EnergyLimit>& limit = settings_.energy_limit;
+  Eigen::VectorXd v_k = v_star;
+  // Multipliers of the previous LCP by constraint key; at the first SQP iteration those of the
+  // previous step, which also give the first iteration's Lagrangian Hessian (SQP with initial
+  // multiplier estimates: the converged step is the same, it is reached in fewer iterations).
+  std::map<long, double> warm = multipliers_;
+  std::map<long, char> ever_active;
+  Eigen::SparseMatrix<double> H;
+  auto t_lcp = Clock::now();
+  for (int k = 0;; ++k) {
+    const Eigen::VectorXd x_k = x0 + h * v_k;
+    const Linearisation lin = linearise_constraints(*limited_, settings_, fixed, contacts_, time_, x_k, v_k, ever_active);
+    const std::vector<Row>& rows = lin.rows;
+    const double energy_violation = lin.energy_violation;
+    const double penetration = lin.penetration;
+    report.energy_violation = std::max(0.0, energy_violation);
+    report.penetration = penetration;
+    report.max_element_energy = lin.max_energy;
+    const bool satisfied = energy_violation <= settings_.energy_tolerance && penetration <= settings_.contact_tolerance;
+    if (satisfied || k >= settings_.sqp_max_iterations) {
+      report.converged = satisfied;
+      v = v_k;
+      multipliers_ = k > 0 ? warm : std::map<long, double>{};
+      break;
+    }
+
+    // ---- quadratic model: H = A plus the curvature of the energy constraints with lambda > 0
+    std::vector<Eigen::Triplet<double>> extra;
+    if (limit) {
+      for (const auto& [key, lambda_e] : warm) {
+        if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
+        const Eigen::MatrixXd He = limited_->element_hessian(key, x_k) * (h * lambda_e / limit->max_energy);
+        for (int a = 0; a < disc.nodes(); ++a)
+          for (int o = 0; o < disc.nodes(); ++o)
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j) {
+                const Eigen::Index r = 3 * elements(key, a) + i, c = 3 * elements(key, o) + j;
+                if (!fixed[r] && !fixed[c]) extra.emplace_back(r, c, He(3 * a + i, 3 * o + j));
+              }
+      }
+    }
+    if (!extra.empty()) {
+      H = A;  // same pattern: A holds every element block
+      for (const Eigen::Triplet<double>& t : extra) H.coeffRef(t.row(), t.col()) += t.value();
+      use(H, factor_->lagrangian);
+    } else if (current != &A) {
+      use(A, factor_->backward_euler);
+    }
+    const Eigen::VectorXd g = k == 0 ? Eigen::VectorXd::Zero(n) : Eigen::VectorXd(A * (v_k - v_star));
+
+    // ---- LCP (Eq. 23) with W = J H^-1 J^T
+    const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
+    Eigen::VectorXd offset(m), lambda(m);
+    std::vector<LcpRow> bounds(m);
+    std::vector<Eigen::Triplet<double>> entries;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      for (const auto& [dof, value] : rows[i].jacobian) entries.emplace_back(i, dof, value);
+      offset(i) = rows[i].offset;
+      bounds[i] = rows[i].bounds;
+      const auto w = warm.find(rows[i].key);
+      lambda(i) = w == warm.end() ? 0.0 : w->second;
+    }
+    Eigen::SparseMatrix<double, Eigen::RowMajor> J(m, n);
+    J.setFromTriplets(entries.begin(), entries.end());
+    // W~ = J~ P^-1 J~^T from the factorisation at hand. Columns P^-1 J_i^T are cached per
+    // constraint with the Jacobian J~_i they were computed for and reused while J_i stays close
+    // (contact rows against a fixed normal do not change at all); new ones come from one
+    // multi-RHS solve. W~ is exact when the factorisation is of H and every J~_i = J_i.
+    Eigen::MatrixXd W, Y;  // W~ and its columns P^-1 J~^T
+    bool w_exact = false;
+    auto form_w = [&](bool reuse_columns) {
+      const auto t_w = Clock::now();
+      std::vector<Eigen::Index> missing;
+      w_exact = F->exact();
+      for (Eigen::Index i = 0; i < m; ++i) {
+        const auto it = F->columns().find(rows[i].key);
+        if (it != F->columns().end() && it->second.jacobian.size() == rows[i].jacobian.size()) {
+          double diff = 0.0, norm = 0.0;
+          bool same_dofs = true;
+          for (std::size_t j = 0; j < rows[i].jacobian.size(); ++j) {
+            same_dofs = same_dofs && it->second.jacobian[j].first == rows[i].jacobian[j].first;
+            diff += std::pow(it->second.jacobian[j].second - rows[i].jacobian[j].second, 2);
+            norm += std::pow(rows[i].jacobian[j].second, 2);
+          }
+          if (same_dofs && diff == 0.0) continue;
+          if (same_dofs && reuse_columns && diff <= std::pow(reuse.column_reuse_tolerance, 2) * norm) {
+            w_exact = false;
+            continue;
+          }
+        }
+        missing.push_back(i);
+      }
+      if (!missing.empty()) {
+        Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, static_cast<Eigen::Index>(missing.size()));
+        for (std::size_t c = 0; c < missing.size(); ++c)
+          for (const auto& [dof, value] : rows[missing[c]].jacobian) rhs(dof, static_cast<Eigen::Index>(c)) = value;
+        const Eigen::MatrixXd cols = F->apply_inverse(rhs);
+        for (std::size_t c = 0; c < missing.size(); ++c)
+          F->columns()[rows[missing[c]].key] = {rows[missing[c]].jacobian, cols.col(static_cast<Eigen::Index>(c))};
+      }
+      std::vector<Eigen::Triplet<double>> cached;
+      Y.resize(n, m);
+      for (Eigen::Index i = 0; i < m; ++i) {
+        const LaggedFactorization::Column& col = F->columns().at(rows[i].key);
+        for (const auto& [dof, value] : col.jacobian) cached.emplace_back(i, dof, value);
+        Y.col(i) = col.values;
+      }
+      Eigen::SparseMatrix<double, Eigen::RowMajor> Jc(m, n);
+      Jc.setFromTriplets(cached.begin(), cached.end());
+      W = Jc * Y;  // sparse-times-dense: O(nnz(J) m)
+      for (Eigen::Index i = 0; i < m; ++i) W(i, i) = std::max(W(i, i), 1e-14 * W.diagonal().cwiseAbs().maxCoeff());
+      // Bound the cache (n doubles per column) on large meshes.
+      if (static_cast<double>(F->columns().size()) * static_cast<double>(n) > 3.2e7) F->columns().clear();
+      report.w_seconds += since(t_w);
+    };
+    form_w(true);
+    // Splitting iteration: w(lambda) = offset + J u(lambda), u = H^-1 (J^T lambda - g) exactly;
+    // PGS on W~ with q~ = w(lambda_s) - W~ lambda_s. With an exact W~ one PGS solve is the answer.
+    // It stops when the exact LCP residual is below 1 % of the SQP's constraint tolerances
+    // (as velocities: a residual r moves the end-of-step constraint by h r), or the PGS
+    // tolerance if that is looser; the PGS inner solves use half of it.
+    const double split_tolerance = std::max(
+        settings_.pgs.tolerance, 0.01 * std::min(settings_.contact_tolerance, settings_.energy_tolerance) / h);
+    PgsSettings inner = settings_.pgs;
+    inner.tolerance = 0.5 * split_tolerance;
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(n), w(m), lambda_before = lambda;
+    double residual = 0.0, previous_residual = 0.0;
+    bool pgs_on_exact_w = false;
+    for (int s = 0;; ++s) {
+      const bool was_exact = F->exact();
+      const int cg_before = counters.cg_iterations;
+      // After a PGS solve, the change of multipliers moves u by about P^-1 J^T dlambda: with that
+      // as the starting guess CG only corrects for P != H.
+      if (s > 0) u.noalias() += Y * (lambda - lambda_before);
+      solve(Eigen::VectorXd(J.transpose() * lambda) - g, u, s > 0);
+      const int cg_this_split = counters.cg_iterations - cg_before;
+      if (F->exact() && !was_exact) form_w(false);  // CG gave up and H was refactorised: W is exact now
+      w = offset + J * u;
+      residual = lcp_residual(W, w - W * lambda, bounds, lambda);
+      if (residual <= split_tolerance || pgs_on_exact_w) break;
+      // Give up on a slow splitting (refactorise and form W exactly) when the sweeps still
+      // needed, extrapolated from the last contraction, would cost more CG than a factorisation.
+      bool slow = s >= reuse.max_splitting_iterations;
+      if (!slow && !F->exact() && s >= 2) {
+        const double rate = residual / previous_residual;
+        const double remaining = rate >= 1.0 ? 1e9 : std::log(split_tolerance / residual) / std::log(rate);
+        slow = remaining * std::max(cg_this_split, 1) > F->refresh_cost();
+      }
+      previous_residual = residual;
+      if (slow) {
+        if (!F->exact()) F->refactor(counters);
+        form_w(false);
+      }
+      pgs_on_exact_w = w_exact;
+      const auto t_pgs = Clock::now();
+      lambda_before = lambda;
+      const PgsReport pgs = solve_pgs(W, w - W * lambda, bounds, lambda, inner);
+      report.pgs_seconds += since(t_pgs);
+      ++report.splitting_iterations;
+      report.pgs_iterations += pgs.iterations;
+      report.pgs_unconverged += pgs.converged ? 0 : 1;
+    }
+    report.sqp_iterations = k + 1;
+    report.pgs_residual = residual;
+    report.active_energy = report.active_contacts = 0;
+    warm.clear();
+    for (Eigen::Index i = 0; i < m; ++i) {
+      warm[rows[i].key] = lambda(i);
+      if (rows[i].bounds.normal >= 0 || lambda(i) <= 0.0) continue;
+      if (rows[i].energy) {
+        ++report.active_energy;
+        ever_active[rows[i].key] = 1;
+      } else {
+        ++report.active_contacts;
+      }
+    }
+    v_k += u;  // Eq. 21 for k = 0
+  }
+  report.lcp_seconds = since(t_lcp);
+  report.factorizations = counters.factorizations;
+  report.cg_iterations = counters.cg_iterations;
+  report.factor_seconds = counters.factor_seconds;
+  report.solve_seconds = counters.solve_seconds;
+  // Prescribed DOFs end exactly where their motion puts them (the solves above hold them only to
+  // the CG tolerance).
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (fixed[i]) v(i) = v_fixed(i);
+  x = x0 + h * v;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (fixed[i]) x(i) = x_end(i);
+  time_ += h;
+  report.seconds = since(t_step);
+  return report;
+}
+
+}  // namespace sinew
