@@ -23,6 +23,8 @@ struct Command {
 Command add_materials_command(CLI::App& app);
 Command add_material_eval_command(CLI::App& material);
 Command add_material_curve_command(CLI::App& material);
+// `sinew viewer SCENE.json`: the browser viewer of a finished run (cmd_viewer.cpp).
+Command add_viewer_command(CLI::App& app);
 
 // A finite number, or sinew::Error("expected a finite number, got '...'", field).
 double parse_number(const std::string& text, const std::string& field);

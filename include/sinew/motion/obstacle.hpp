@@ -36,6 +36,8 @@ class PlaneObstacle final : public ObstacleShape {
   PlaneObstacle(const Eigen::Vector3d& point, const Eigen::Vector3d& normal);
   std::string type() const override { return "plane"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  const Eigen::Vector3d& point() const { return point_; }
+  const Eigen::Vector3d& normal() const { return normal_; }
 
  private:
   Eigen::Vector3d point_, normal_;
@@ -46,6 +48,8 @@ class SphereObstacle final : public ObstacleShape {
   SphereObstacle(const Eigen::Vector3d& center, double radius);
   std::string type() const override { return "sphere"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  const Eigen::Vector3d& center() const { return center_; }
+  double radius() const { return radius_; }
 
  private:
   Eigen::Vector3d center_;
@@ -58,6 +62,9 @@ class CapsuleObstacle final : public ObstacleShape {
   CapsuleObstacle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius);
   std::string type() const override { return "capsule"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  const Eigen::Vector3d& a() const { return a_; }
+  const Eigen::Vector3d& b() const { return b_; }
+  double radius() const { return radius_; }
 
  private:
   Eigen::Vector3d a_, b_;
@@ -70,6 +77,10 @@ class CylinderObstacle final : public ObstacleShape {
   CylinderObstacle(const Eigen::Vector3d& center, const Eigen::Vector3d& axis, double radius, double length);
   std::string type() const override { return "cylinder"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  const Eigen::Vector3d& center() const { return center_; }
+  const Eigen::Vector3d& axis() const { return axis_; }  // unit
+  double radius() const { return radius_; }
+  double length() const { return 2.0 * half_length_; }
 
  private:
   Eigen::Vector3d center_, axis_;
@@ -82,6 +93,8 @@ class BoxObstacle final : public ObstacleShape {
   BoxObstacle(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
   std::string type() const override { return "box"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  Eigen::Vector3d lo() const { return center_ - half_; }
+  Eigen::Vector3d hi() const { return center_ + half_; }
 
  private:
   Eigen::Vector3d center_, half_;
