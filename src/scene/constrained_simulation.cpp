@@ -14,6 +14,7 @@
 #include "sinew/io/atomic_file.hpp"
 #include "sinew/io/obj_writer.hpp"
 #include "sinew/io/vtk_writer.hpp"
+#include "sinew/scene/shape_output.hpp"
 #include "sinew/scene/simulation.hpp"
 #include "sinew/mesh/surface.hpp"
 
@@ -197,6 +198,7 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
     for (Eigen::Index e = 0; e < U.size(); ++e) U(e) = model->element_energy(e, x);
     return U;
   };
+  const ShapeOutput shapes(scene, mesh);
   auto write_frame = [&](int frame) {
     if (!writing || frame % scene.output.every != 0) return;
     if (scene.output.vtu) {
@@ -207,9 +209,10 @@ RunSummary run_constrained_scene(const Scene& scene, const RunOptions& options) 
       const std::string name = fmt::format("frame_{:04d}.vtu", frame);
       write_vtu(out / name, mesh, x, fields);
       pvd.emplace_back(frame * steps_per_frame * h, name);
-      write_pvd(out / "simulation.pvd", pvd);
+      write_pvd(out / "simulation.pvd", pvd, PvdTime::Seconds);
     }
     if (scene.output.obj) write_surface_obj(out / fmt::format("surface_{:04d}.obj", frame), mesh, surface, x);
+    shapes.write(out, frame);  // obstacles, shape_output.hpp
   };
   auto write_summary = [&] {
     if (!writing) return;

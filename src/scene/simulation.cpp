@@ -19,6 +19,7 @@
 #include "sinew/scene/constrained_simulation.hpp"
 #include "sinew/scene/dynamic_model.hpp"
 #include "sinew/scene/scene_rig.hpp"
+#include "sinew/scene/shape_output.hpp"
 #include "sinew/solver/newton.hpp"
 
 namespace sinew {
@@ -173,7 +174,7 @@ std::string scene_fingerprint(const Scene& scene) {
 // A fresh run replaces the files an earlier run left in the folder (only the names Sinew
 // writes), so a shorter run does not leave stale frames behind.
 void remove_previous_outputs(const std::filesystem::path& out) {
-  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|simulation\.pvd|summary\.json|checkpoint\.json))");
+  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|embedded_surface\.pc2|embedded_surface_rest\.obj|(obstacle|bone)_.+_\d{4,}\.(vtu|obj)|simulation\.pvd|summary\.json|checkpoint\.json))");
   std::error_code ec;
   if (!std::filesystem::is_directory(out, ec)) return;
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
@@ -275,7 +276,11 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   const VolumeMesh& mesh = disc.mesh();
   Problem& problem = *model.problem;
   auto linear = make_linear_solver(scene.solver.linear);
-  const EmbeddedSurfaceOutput embedded(scene, mesh);  // scene_surface.hpp
+  EmbeddedSurfaceOutput embedded(scene, mesh);  // embedded_surface_output.hpp
+  const ShapeOutput shapes(scene, mesh);         // obstacles and bones, shape_output.hpp
+  // ParaView time: seconds in dynamics, the frame number in quasistatics (stated in the .pvd).
+  const double seconds_per_frame = model.dynamic.dynamic() ? scene.dynamics->time_step : 1.0;
+  const PvdTime pvd_time = model.dynamic.dynamic() ? PvdTime::Seconds : PvdTime::Frames;
 
   RunSummary summary;
   summary.vertices = mesh.num_vertices();
@@ -307,19 +312,21 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
 
   auto write_frame = [&](int frame) {
     if (!writing || frame % scene.output.every != 0) return;
+    std::optional<ElasticForm::ElementFields> fields;
+    if (scene.output.vtu || embedded.active()) fields = model.elastic->element_fields(x);
     if (scene.output.vtu) {
-      const auto fields = model.elastic->element_fields(x);
       VtuFields vf;
-      vf.cell_scalars = {{"J", fields.J}, {"energy_density", fields.energy_density},
-                         {"stress_norm", fields.stress_norm}, {"energy", fields.energy}};
+      vf.cell_scalars = {{"J", fields->J}, {"energy_density", fields->energy_density},
+                         {"stress_norm", fields->stress_norm}, {"energy", fields->energy}};
       const std::string name = fmt::format("frame_{:04d}.vtu", frame);
       write_vtu(out / name, mesh, x, vf);
       std::erase_if(pvd_entries, [&](const auto& e) { return e.second == name; });
-      pvd_entries.emplace_back(frame, name);
-      write_pvd(out / "simulation.pvd", pvd_entries);
+      pvd_entries.emplace_back(frame * seconds_per_frame, name);
+      write_pvd(out / "simulation.pvd", pvd_entries, pvd_time);
     }
     if (scene.output.obj) write_surface_obj(out / fmt::format("surface_{:04d}.obj", frame), mesh, model.surface, x);
-    embedded.write(out, frame, x);
+    if (embedded.active()) embedded.write(out, frame, x, disc, &fields->J, &fields->stress_norm);
+    shapes.write(out, frame);
   };
 
   auto frames_json = [&] {

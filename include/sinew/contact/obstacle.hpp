@@ -10,6 +10,7 @@
 
 #include "sinew/core/types.hpp"
 #include "sinew/fem/kinematics.hpp"
+#include "sinew/mesh/triangle_surface.hpp"
 
 namespace sinew {
 
@@ -28,6 +29,9 @@ class ObstacleShape {
   virtual ~ObstacleShape() = default;
   virtual std::string type() const = 0;
   virtual SurfaceQuery query(const Eigen::Vector3d& p) const = 0;  // in the rest pose
+  // Its surface in the rest pose as triangles, for output (contact/obstacle_surface.cpp); an
+  // unbounded shape (the plane) is cut to a square of side 2 * half_extent.
+  virtual TriangleSurface surface_mesh(double half_extent) const = 0;
 };
 
 // Half-space below the plane through `point` with outward `normal` (the ground: normal up).
@@ -36,6 +40,7 @@ class PlaneObstacle final : public ObstacleShape {
   PlaneObstacle(const Eigen::Vector3d& point, const Eigen::Vector3d& normal);
   std::string type() const override { return "plane"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  TriangleSurface surface_mesh(double half_extent) const override;
 
  private:
   Eigen::Vector3d point_, normal_;
@@ -46,6 +51,7 @@ class SphereObstacle final : public ObstacleShape {
   SphereObstacle(const Eigen::Vector3d& center, double radius);
   std::string type() const override { return "sphere"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  TriangleSurface surface_mesh(double half_extent) const override;
 
  private:
   Eigen::Vector3d center_;
@@ -58,6 +64,7 @@ class CapsuleObstacle final : public ObstacleShape {
   CapsuleObstacle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius);
   std::string type() const override { return "capsule"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  TriangleSurface surface_mesh(double half_extent) const override;
 
  private:
   Eigen::Vector3d a_, b_;
@@ -70,6 +77,7 @@ class CylinderObstacle final : public ObstacleShape {
   CylinderObstacle(const Eigen::Vector3d& center, const Eigen::Vector3d& axis, double radius, double length);
   std::string type() const override { return "cylinder"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  TriangleSurface surface_mesh(double half_extent) const override;
 
  private:
   Eigen::Vector3d center_, axis_;
@@ -82,6 +90,7 @@ class BoxObstacle final : public ObstacleShape {
   BoxObstacle(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
   std::string type() const override { return "box"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  TriangleSurface surface_mesh(double half_extent) const override;
 
  private:
   Eigen::Vector3d center_, half_;
@@ -97,6 +106,8 @@ class Obstacle {
   bool moves() const;
 
   RigidTransform pose(double frame) const { return transform_at(path_, frame); }
+  // The shape's surface moved to `frame` (see ObstacleShape::surface_mesh).
+  TriangleSurface surface_at(double frame, double half_extent) const;
   // The query of a world-space point against the obstacle at `frame`, in world space.
   SurfaceQuery query(const Eigen::Vector3d& p, double frame) const;
   // How far the obstacle material point at p (world, at frame0) moves by frame1.
