@@ -179,6 +179,13 @@ def frame_axis(run):
     return run.frames, "frame"
 
 
+def label_x(ax, xlabel):
+    ax.set_xlabel(xlabel)
+    if xlabel == "frame":
+        from matplotlib.ticker import MaxNLocator
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+
+
 def mark_unconverged(ax, run, xs):
     bad = [x for x, ok in zip(xs, run.converged) if not ok]
     for x in bad:
@@ -205,30 +212,50 @@ def plot_convergence(plt, run):
         positive = [(x, r) for x, r in zip(xs, run.residual) if r > 0]
         if positive:
             ax0.semilogy(*zip(*positive), marker="o")
-        ax0.set_xlabel(xlabel)
+        label_x(ax0, xlabel)
         ax0.set_ylabel(run.residual_name)
         ax0.set_title("final residual per frame")
         mark_unconverged(ax0, run, xs)
     for name, counts in run.counters.items():
         ax1.plot(xs, counts, marker="o", label=name)
-    ax1.set_xlabel(xlabel)
+    label_x(ax1, xlabel)
     ax1.set_ylabel("iterations per frame")
     ax1.set_title("solver iterations")
     ax1.legend()
     return fig
 
 
-def plot_reactions(plt, run):
+def translations(scene):
+    """Boundary name -> per-frame displacement vector of the scene's translate motions."""
+    out = {}
+    boundary = scene.get("boundary", []) if isinstance(scene, dict) else []
+    for i, b in enumerate(boundary if isinstance(boundary, list) else []):
+        motion = b.get("motion") if isinstance(b, dict) else None
+        if isinstance(motion, dict) and motion.get("type") == "translate":
+            step = motion.get("per_frame")
+            if isinstance(step, list) and len(step) == 3 and all(isinstance(c, (int, float)) for c in step):
+                out[b.get("name") or f"boundary {i}"] = [float(c) for c in step]
+    return out
+
+
+def plot_reactions(plt, run, scene):
     if not run.reactions:
         return None
     xs, xlabel = frame_axis(run)
+    moves = translations(scene) if not run.dynamic else {}
     fig, axes = plt.subplots(1, len(run.reactions), figsize=(5 * len(run.reactions), 4), squeeze=False)
     for ax, (name, rows) in zip(axes[0], run.reactions.items()):
+        step = moves.get(name)
+        length = math.sqrt(sum(c * c for c in step)) if step else 0.0
+        if length > 0.0:  # a translated boundary: force against its displacement
+            x, axis_label = [f * length for f in run.frames], f"displacement of \"{name}\" [m]"
+        else:
+            x, axis_label = xs, xlabel
         for c, label in enumerate("xyz"):
-            ax.plot(xs, [r[c] for r in rows], marker=".", label=f"$f_{label}$")
-        ax.plot(xs, [math.sqrt(sum(v * v for v in r)) for r in rows], color="black", linestyle="--", label="|f|")
+            ax.plot(x, [r[c] for r in rows], marker=".", label=f"$f_{label}$")
+        ax.plot(x, [math.sqrt(sum(v * v for v in r)) for r in rows], color="black", linestyle="--", label="|f|")
         ax.axhline(0.0, color="grey", linewidth=0.5)
-        ax.set_xlabel(xlabel)
+        label_x(ax, axis_label)
         ax.set_ylabel("force on the body [N]")
         ax.set_title(f"reaction of \"{name}\"")
         ax.legend(fontsize="small")
@@ -244,7 +271,7 @@ def plot_volume(plt, run):
     else:
         ax0.plot(xs, run.volume, marker="o")
         ax0.set_ylabel("volume [m$^3$]")
-    ax0.set_xlabel(xlabel)
+    label_x(ax0, xlabel)
     ax0.set_title("volume")
     if run.min_J is not None and len(run.min_J) == len(xs):
         ax1.plot(xs, run.min_J, marker="o", color="tab:orange")
@@ -254,7 +281,7 @@ def plot_volume(plt, run):
     else:
         ax1.text(0.5, 0.5, "min J not recorded by this run", ha="center", va="center", transform=ax1.transAxes)
         ax1.set_axis_off()
-    ax1.set_xlabel(xlabel)
+    label_x(ax1, xlabel)
     return fig
 
 
@@ -268,17 +295,16 @@ def plot_energy(plt, run):
     if run.dynamic and len(run.energies) > 1:
         total = [sum(v) for v in zip(*run.energies.values())]
         ax.plot(xs, total, color="black", linestyle="--", label="sum")
-    ax.set_xlabel(xlabel)
+    label_x(ax, xlabel)
     ax.set_ylabel("energy [J]")
     ax.set_title("energy" + (" over time" if run.dynamic else " per frame"))
     ax.legend(fontsize="small")
     return fig
 
 
-def material_spec(run, out_dir):
-    """The scene's /material object: from the summary, else from the scene file it names."""
-    if isinstance(run.material_spec, dict):
-        return run.material_spec, None
+def load_scene(run, out_dir):
+    """The scene file the summary names, as JSON (looked up as written, then beside OUT_DIR's
+    parent), or (None, why not)."""
     if not run.scene:
         return None, "the summary names no scene file"
     candidates = [pathlib.Path(run.scene)]
@@ -287,15 +313,25 @@ def material_spec(run, out_dir):
     for p in candidates:
         if p.is_file():
             try:
-                spec = json.loads(p.read_text(encoding="utf-8")).get("material")
-            except (OSError, json.JSONDecodeError, AttributeError) as e:
-                return None, f"cannot read the material of {p}: {e}"
-            return (spec, None) if isinstance(spec, dict) else (None, f"{p} has no /material object")
+                scene = json.loads(p.read_text(encoding="utf-8"))
+            except (OSError, json.JSONDecodeError) as e:
+                return None, f"cannot read {p}: {e}"
+            return (scene, None) if isinstance(scene, dict) else (None, f"{p} is not a scene object")
     return None, f"scene file {run.scene} not found (run `sinew plot` from where the scene was run)"
 
 
-def plot_stress_stretch(plt, run, out_dir, sinew):
-    spec, why = material_spec(run, out_dir)
+def material_spec(run, scene, why):
+    """The scene's /material object: from the summary, else from the scene file."""
+    if isinstance(run.material_spec, dict):
+        return run.material_spec, None
+    if scene is None:
+        return None, why
+    spec = scene.get("material")
+    return (spec, None) if isinstance(spec, dict) else (None, f"{run.scene} has no /material object")
+
+
+def plot_stress_stretch(plt, run, scene, scene_why, sinew):
+    spec, why = material_spec(run, scene, scene_why)
     if spec is None:
         note(f"stress_stretch skipped: {why}")
         return None
@@ -368,9 +404,10 @@ def main(argv):
         plots_dir.mkdir(parents=True, exist_ok=True)
     except OSError as e:
         raise PlotError(plots_dir, f"cannot create the plot folder: {e.strerror}") from None
-    makers = {"convergence": lambda: plot_convergence(plt, run), "reactions": lambda: plot_reactions(plt, run),
+    scene, scene_why = load_scene(run, out_dir)
+    makers = {"convergence": lambda: plot_convergence(plt, run), "reactions": lambda: plot_reactions(plt, run, scene),
               "volume": lambda: plot_volume(plt, run), "energy": lambda: plot_energy(plt, run),
-              "stress_stretch": lambda: plot_stress_stretch(plt, run, out_dir, args.sinew)}
+              "stress_stretch": lambda: plot_stress_stretch(plt, run, scene, scene_why, args.sinew)}
     written = []
     for name in only:
         fig = makers[name]()
