@@ -87,5 +87,5 @@ echo '{"frames": [{"frame": 1, "converged": true, "linear_iterations": 3, "volum
 expect_error "/frames/0: missing \"newton_iterations\"" plot "$TMP/bad"
 expect_error "--format: unknown format 'gif'" plot "$TMP/q/out" --format gif
 expect_error "--only: unknown plot 'pressure'" plot "$TMP/q/out" --only pressure
-expect_error "plot" plot  # OUT_DIR is required
+expect_error "out_dir is required" plot
 echo "plot: ok"
