@@ -73,7 +73,9 @@ TEST(IoPointCache, AppenderGrowsAndResumes) {
   EXPECT_EQ(c.samples[2], sample(4, 7.0).cast<float>());
   EXPECT_EQ(std::filesystem::file_size(path), 32u + 3u * 4u * 12u);
 
-  expect_contains(error_message([&] { Pc2Appender::resume(path, 5, 1); }), {"grow.pc2", "3 samples of"} );
+  expect_contains(error_message([&] { Pc2Appender::resume(path, 5, 1); }), {"grow.pc2", "the cache has 4 points, the surface 5"});
+  expect_contains(error_message([&] { Pc2Appender::resume(path, 4, 5); }), {"grow.pc2", "cannot keep 5 samples: the cache holds 3"});
+  expect_contains(error_message([&] { Pc2Appender::resume(dir / "none.pc2", 4, 1); }), {"none.pc2", "no point cache to resume"});
 }
 
 TEST(IoPointCache, BadInputIsNamed) {
