@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "io_test_support.hpp"
 #include "sinew/io/obj_polygon_reader.hpp"
@@ -168,6 +169,13 @@ TEST(IoPolygonObj, SurfaceVtuHasPolygonCells) {
   write_surface_vtu(dir / "c.vtu", s, s.positions);
   const std::string text = test::read_file(dir / "c.vtu");
   expect_contains(text, {"NumberOfPoints=\"9\" NumberOfCells=\"6\"", "Name=\"types\""});
+  // VTK's own reader agrees (tests/vtk_reader_check.py; skipped without python3-vtk9).
+  const std::string check = "/usr/bin/python3 '" + (test::data_path("..") / "vtk_reader_check.py").string() + "' '" +
+                            (dir / "c.vtu").string() + "' --cells 6 --points ";
+  if (std::system("/usr/bin/python3 -c 'import vtk' > /dev/null 2>&1") == 0) {
+    EXPECT_EQ(std::system((check + "9").c_str()), 0);
+    EXPECT_NE(std::system((check + "10 2> /dev/null").c_str()), 0);  // the check can fail
+  }
   TriangleSurface bad = s.triangulated();
   bad.faces(0, 0) = 99;
   expect_contains(error_message([&] { write_surface_vtu(dir / "t.vtu", bad); }), {"t.vtu", "refers to vertex 99"});
