@@ -141,7 +141,10 @@ def read_summary(path):
             min_j = _field(f, "min_J", where, optional=True)
             if min_j is not None:
                 run.min_J = (run.min_J or []) + [min_j]
-            run.energies.setdefault("total potential", []).append(_field(f, "energy", where))
+            # Elastic plus load and contact potential; older summaries only have "energy".
+            potential = _field(f, "potential_energy", where, optional=True)
+            run.energies.setdefault("potential (elastic, loads, contact)", []).append(
+                potential if potential is not None else _field(f, "energy", where))
             run.energies.setdefault("kinetic", []).append(_field(f, "kinetic_energy", where, optional=True) or 0.0)
             reactions = f.get("reactions", [])
             if not isinstance(reactions, list):
@@ -294,7 +297,7 @@ def plot_energy(plt, run):
         ax.plot(xs, values, marker=".", label=name)
     if run.dynamic and len(run.energies) > 1:
         total = [sum(v) for v in zip(*run.energies.values())]
-        ax.plot(xs, total, color="black", linestyle="--", label="sum")
+        ax.plot(xs, total, color="black", linestyle="--", label="total")
     label_x(ax, xlabel)
     ax.set_ylabel("energy [J]")
     ax.set_title("energy" + (" over time" if run.dynamic else " per frame"))
