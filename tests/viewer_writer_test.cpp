@@ -1,7 +1,7 @@
 // The browser viewer's files: the GLB (read back here byte by byte: header, chunks, accessors,
 // morph targets that reproduce every frame, the STEP animation, field arrays), the HTML page
-// (the same GLB inline, the script inline and unable to close its element), the display meshes
-// of obstacles and bones, and the scene adapter's fields (J and von Mises) on a real run.
+// (the same GLB inline, the script inline and unable to close its element), and the scene
+// adapter's fields (J and von Mises) on a real run.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,7 +13,7 @@
 #include "sinew/io/base64.hpp"
 #include "sinew/io/gltf_writer.hpp"
 #include "sinew/io/viewer_writer.hpp"
-#include "sinew/mesh/shape_mesh.hpp"
+#include "sinew/element/nodal_fields.hpp"
 #include "sinew/run/run_viewer.hpp"
 #include "sinew/run/simulation.hpp"
 
@@ -229,33 +229,6 @@ TEST(ViewerWriter, RejectsBadFramesAndAMissingScript) {
   EXPECT_TRUE(dir.entries().empty());
 }
 
-TEST(ShapeMesh, ClosedOutwardMeshesOfTheRightVolume) {
-  const double pi = std::numbers::pi;
-  struct Case {
-    const char* name;
-    TriangleSurface mesh;
-    double volume;
-  };
-  const Eigen::Vector3d c(0.5, -1, 2), a(0, 0, 0), b(1, 2, 0.5);
-  const double len = (b - a).norm();
-  const std::vector<Case> cases = {
-      {"sphere", sphere_mesh(c, 0.7, 48), 4.0 / 3.0 * pi * std::pow(0.7, 3)},
-      {"capsule", capsule_mesh(a, b, 0.3, 48), pi * 0.09 * len + 4.0 / 3.0 * pi * 0.027},
-      {"cylinder", cylinder_mesh(c, Eigen::Vector3d(1, 1, 0), 0.4, 1.5, 48), pi * 0.16 * 1.5},
-      {"box", box_mesh(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3)), 6.0},
-  };
-  for (const Case& k : cases) {
-    SCOPED_TRACE(k.name);
-    EXPECT_NO_THROW(k.mesh.validate(k.name));  // closed, consistently oriented, positive volume
-    EXPECT_TRUE(surface_topology(k.mesh).watertight());
-    EXPECT_NEAR(k.mesh.volume(), k.volume, 0.01 * k.volume);
-  }
-  const TriangleSurface sq = square_mesh(Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0, 0, 2), 3.0);
-  const Eigen::Vector3d n = (sq.vertices.row(1) - sq.vertices.row(0)).cross(sq.vertices.row(2) - sq.vertices.row(0)).transpose();
-  EXPECT_GT(n.z(), 0.0);  // faces the normal
-  EXPECT_NEAR(n.norm(), 36.0, 1e-12);
-}
-
 // A 1 x 0.5 x 0.5 box of 4 x 2 x 2 hexes with a sphere obstacle and a capsule bone.
 Scene small_scene(const TempDir& dir) {
   const json j = json::parse(R"({
@@ -296,7 +269,7 @@ TEST(RunViewer, FieldsAreJAndVonMisesOfTheDeformation) {
   // Vertex averages of a constant are that constant; a non-finite element is skipped.
   Eigen::VectorXd values = Eigen::VectorXd::Constant(disc->num_elements(), 2.5);
   values(0) = std::nan("");
-  const Eigen::VectorXd v = vertex_average(*disc, values);
+  const Eigen::VectorXd v = nodal_average(*disc, values);
   EXPECT_TRUE(v.allFinite());
   EXPECT_NEAR(v.minCoeff(), 0.0, 0.0);  // vertex 0 belongs to element 0 only
   EXPECT_NEAR(v.maxCoeff(), 2.5, 1e-12);

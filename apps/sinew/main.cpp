@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   material->require_subcommand(1);
   commands.push_back(sinew::cli::add_material_eval_command(*material));
   commands.push_back(sinew::cli::add_material_curve_command(*material));
+  commands.push_back(sinew::cli::add_plot_command(app, exit_code));
 
   try {
     app.parse(argc, argv);

@@ -21,6 +21,7 @@ nlohmann::json frame_to_json(const FrameRecord& r) {
           {"linear_iterations", r.linear_iterations},
           {"substeps", r.substeps},
           {"residual", r.residual},
+          {"residuals", r.residuals},
           {"energy", r.energy},
           {"volume", r.volume},
           {"min_J", r.min_J},
@@ -47,6 +48,7 @@ FrameRecord frame_from_json(const nlohmann::json& j) {
   r.linear_iterations = j.at("linear_iterations");
   r.substeps = j.at("substeps");
   r.residual = j.at("residual");
+  if (j.contains("residuals")) r.residuals = j.at("residuals").get<std::vector<double>>();  // older checkpoints lack it
   r.energy = j.at("energy");
   r.volume = j.at("volume");
   r.min_J = j.at("min_J");

@@ -13,37 +13,14 @@
 #include "sinew/io/mesh_reader.hpp"
 #include "sinew/io/surface_reader.hpp"
 #include "sinew/material/spec.hpp"
-#include "sinew/mesh/shape_mesh.hpp"
+#include "sinew/element/nodal_fields.hpp"
+#include "sinew/motion/bone_surface.hpp"
 #include "sinew/motion/rig.hpp"
 
 namespace sinew {
 namespace {
 
 const std::vector<std::string> kFieldNames = {"J", "von_mises"};
-
-Eigen::MatrixX3i to_faces(const Eigen::MatrixXi& triangles) { return triangles.leftCols<3>(); }
-
-// The rest-pose display mesh of an obstacle. A plane is infinite: it is shown as a square
-// under the body (`focus`: the body's rest bounds), three body sizes wide.
-TriangleSurface obstacle_display_mesh(const ObstacleShape& shape, const Eigen::AlignedBox3d& focus) {
-  if (const auto* s = dynamic_cast<const SphereObstacle*>(&shape)) return sphere_mesh(s->center(), s->radius());
-  if (const auto* c = dynamic_cast<const CapsuleObstacle*>(&shape)) return capsule_mesh(c->a(), c->b(), c->radius());
-  if (const auto* c = dynamic_cast<const CylinderObstacle*>(&shape))
-    return cylinder_mesh(c->center(), c->axis(), c->radius(), c->length());
-  if (const auto* b = dynamic_cast<const BoxObstacle*>(&shape)) return box_mesh(b->lo(), b->hi());
-  if (const auto* p = dynamic_cast<const PlaneObstacle*>(&shape)) {
-    const Eigen::Vector3d n = p->normal(), c = focus.center();
-    const Eigen::Vector3d on_plane = c - n.dot(c - p->point()) * n;
-    return square_mesh(on_plane, n, 1.5 * std::max(focus.sizes().maxCoeff(), 1e-3));
-  }
-  throw Error(fmt::format("no display mesh for obstacle type '{}'", shape.type()), "viewer");
-}
-
-TriangleSurface bone_display_mesh(const BoneShape& shape) {
-  if (const auto* c = dynamic_cast<const CapsuleShape*>(&shape)) return capsule_mesh(c->a(), c->b(), c->radius(), 16);
-  if (const auto* m = dynamic_cast<const MeshBoneShape*>(&shape)) return m->surface();
-  throw Error(fmt::format("no display mesh for bone shape '{}'", shape.kind()), "viewer");
-}
 
 Mat3 cauchy_stress(const Material& material, const Mat3& F) {
   const double J = F.determinant();
@@ -79,21 +56,6 @@ ElementStressFields element_stress_fields(const Discretization& disc, const Mate
   return f;
 }
 
-Eigen::VectorXd vertex_average(const Discretization& disc, const Eigen::VectorXd& element_values) {
-  const VolumeMesh& mesh = disc.mesh();
-  Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.num_vertices()), weight = sum;
-  for (Eigen::Index e = 0; e < mesh.num_elements(); ++e) {
-    if (!std::isfinite(element_values(e))) continue;
-    const double w = disc.rest_volume(e);
-    for (Eigen::Index k = 0; k < mesh.elements.cols(); ++k) {
-      sum(mesh.elements(e, k)) += w * element_values(e);
-      weight(mesh.elements(e, k)) += w;
-    }
-  }
-  for (Eigen::Index v = 0; v < sum.size(); ++v) sum(v) = weight(v) > 0.0 ? sum(v) / weight(v) : 0.0;
-  return sum;
-}
-
 RunViewer::RunViewer(const Scene& scene, std::shared_ptr<const Discretization> disc,
                      std::shared_ptr<const Material> material, ViewerOptions options)
     : scene_(&scene), disc_(std::move(disc)), material_(std::move(material)) {
@@ -121,13 +83,13 @@ RunViewer::RunViewer(const Scene& scene, std::shared_ptr<const Discretization> d
   Eigen::AlignedBox3d focus;
   for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v) focus.extend(mesh.vertices.row(v).transpose());
   for (std::size_t i = 0; i < scene.obstacles.size(); ++i) {
-    const TriangleSurface s = obstacle_display_mesh(*scene.obstacles[i].shape, focus);
+    const TriangleSurface s = scene.obstacles[i].shape->surface_mesh(focus);
     rigid_.push_back({s.vertices, i, false});
     objects.push_back({"obstacle " + scene.obstacles[i].name, ViewerRole::Obstacle, s.faces, {}});
   }
   if (scene.rig) {
     for (std::size_t i = 0; i < scene.rig->bones.size(); ++i) {
-      const TriangleSurface s = bone_display_mesh(*scene.rig->bones[i].shape);
+      const TriangleSurface s = bone_rest_surface(*scene.rig->bones[i].shape);
       rigid_.push_back({s.vertices, i, true});
       objects.push_back({"bone " + scene.rig->bones[i].name, ViewerRole::Bone, s.faces, {}});
     }
@@ -141,7 +103,7 @@ void RunViewer::add_frame(int frame, double time, const Eigen::VectorXd& x) {
   if (x.size() != 3 * mesh.num_vertices())
     throw Error(fmt::format("frame {} has {} position values for {} vertices", frame, x.size(), mesh.num_vertices()), "viewer");
   const ElementStressFields ef = element_stress_fields(*disc_, *material_, x);
-  const Eigen::VectorXd J = vertex_average(*disc_, ef.J), vm = vertex_average(*disc_, ef.von_mises);
+  const Eigen::VectorXd J = nodal_average(*disc_, ef.J), vm = nodal_average(*disc_, ef.von_mises);
 
   std::vector<ViewerObjectFrame> frames;
   ViewerObjectFrame body;
@@ -158,14 +120,7 @@ void RunViewer::add_frame(int frame, double time, const Eigen::VectorXd& x) {
   if (embedding_) {
     ViewerObjectFrame render;
     render.positions = embedding_->positions(x);
-    const Eigen::Index np = embedding_->num_points();
-    render.fields = {Eigen::VectorXd::Zero(np), Eigen::VectorXd::Zero(np)};
-    for (Eigen::Index p = 0; p < np; ++p)
-      for (Eigen::Index k = 0; k < embedding_->nodes.cols(); ++k) {
-        const double w = embedding_->weights(p, k);
-        render.fields[0](p) += w * J(embedding_->nodes(p, k));
-        render.fields[1](p) += w * vm(embedding_->nodes(p, k));
-      }
+    render.fields = {interpolate_at_points(*embedding_, J), interpolate_at_points(*embedding_, vm)};
     frames.push_back(std::move(render));
   }
 

@@ -31,7 +31,7 @@ std::string scene_fingerprint(const Scene& scene) {
 // A fresh run replaces the files an earlier run left in the folder (only the names Sinew
 // writes), so a shorter run does not leave stale frames behind.
 void remove_previous_outputs(const std::filesystem::path& out) {
-  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|simulation\.pvd|summary\.json|checkpoint\.json))");
+  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|embedded_surface\.pc2|embedded_surface_rest\.obj|(obstacle|bone)_.+_\d{4,}\.(vtu|obj)|viewer\.(html|glb)|simulation\.pvd|summary\.json|checkpoint\.json))");
   std::error_code ec;
   if (!std::filesystem::is_directory(out, ec)) return;
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
@@ -130,11 +130,14 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   for (int frame = first_frame; frame <= frames; ++frame) {
     const auto t_frame = Clock::now();
     if (options.progress) options.progress({frame, frames, 0, 0.0, elapsed(), false, nullptr});
+    std::vector<double> residuals;
     auto progress = [&](int iteration, double residual) {
+      residuals.push_back(residual);
       if (options.progress) options.progress({frame, frames, iteration, residual, elapsed(), false, nullptr});
     };
     FrameRecord record;
     static_cast<StepStats&>(record) = integrator.advance_frame(state, frame, progress);
+    record.residuals = std::move(residuals);
     record.frame = frame;
     record.time = frame_time(frame);
     measure(model, state, record);

@@ -30,10 +30,6 @@ struct ElementStressFields {
 };
 ElementStressFields element_stress_fields(const Discretization& disc, const Material& material, const Eigen::VectorXd& x);
 
-// Per-vertex values: the rest-volume-weighted mean over the elements around each vertex,
-// skipping non-finite element values (a vertex with none gets 0).
-Eigen::VectorXd vertex_average(const Discretization& disc, const Eigen::VectorXd& element_values);
-
 class RunViewer {
  public:
   // Reads the embedded render surface when the scene has one (a sinew::Error names it if it
