@@ -1,11 +1,17 @@
 #!/usr/bin/env python3
-"""Renders the docs' pictures of the example scenes (docs/img/example_NAME.png, viewer_page.png) with Sinew's own
-tooling: each scene is run small (a coarser mesh and/or fewer frames where the example is large,
-see EXAMPLES), `sinew viewer` writes its browser viewer, and the viewer's headless screenshot
-(tests/browser/screenshot.mjs: Debian's chromium through playwright-core) is the picture.
+"""Regenerates every picture in docs/img with Sinew's own tooling:
 
-Needs a build (scripts/setup) and the browser test tools (scripts/setup-browser-tests).
-Usage: scripts/render_docs_images.py [PICTURE ...]   (default: every picture in EXAMPLES)
+- example_NAME.png (every examples/*.json), feature_NAME.png (every examples/features/*.json,
+  shown under its scene in docs/scene-format.md) and viewer_page.png: each scene is run (small,
+  a coarser mesh and/or fewer frames, where the example is large: see EXAMPLES), `sinew viewer`
+  writes its browser viewer, and the viewer's headless screenshot (tests/browser/screenshot.mjs:
+  Debian's chromium through playwright-core) is the picture;
+- plot_*.png (docs/plots.md) by `sinew plot` (scripts/make_plot_examples.sh) and
+  stress_stretch.png (docs/materials.md) by scripts/plot_material_curves.py.
+
+Needs a build and the browser test tools (scripts/test sets up both).
+Usage: scripts/render_docs_images.py [PICTURE ...]   (default: all; names as in docs/img without
+.png, or "plots" for the plot_*.png)
 """
 import json
 import os
@@ -41,6 +47,20 @@ EXAMPLES = {
 }
 
 
+# Feature scenes (examples/features/NAME.json -> feature_NAME.png, 480 x 300) are all rendered at
+# their own size and frame count; only these differ from (frame -1 = last, von Mises):
+FEATURE_CHANGES = {
+    "constraints_obstacles": ({}, 30, -1, "von_mises"),
+    "material_functions": ({}, None, -1, "J"),
+    "mesh_box_tet": ({}, None, -1, "J"),
+}
+for scene in sorted((ROOT / "examples" / "features").glob("*.json")):
+    changes, frames, frame, field = FEATURE_CHANGES.get(scene.stem, ({}, None, -1, "von_mises"))
+    EXAMPLES[f"feature_{scene.stem}"] = (f"features/{scene.stem}", changes, frames, frame, field, False)
+PLOTS = {"plots": [str(ROOT / "scripts" / "make_plot_examples.sh")],
+         "stress_stretch": [sys.executable, str(ROOT / "scripts" / "plot_material_curves.py")]}
+
+
 def merge(scene, changes):
     for key, value in changes.items():
         if isinstance(value, dict) and isinstance(scene.get(key), dict):
@@ -68,18 +88,19 @@ def render(picture, scene_name, changes, frames, frame, field, controls):
             run += ["--frames", str(frames)]
         subprocess.run(run, check=True)
         subprocess.run([str(SINEW), "viewer", str(small), "--out", str(out), "--quiet", "--title", scene_name], check=True)
+        size = "640x480" if controls else "480x300" if picture.startswith("feature_") else "640x400"
         shot = ["node", str(SCREENSHOT), str(out / "viewer.html"), str(OUT / f"{picture}.png"), "--frame", str(frame),
-                "--field", field, "--size", "640x480" if controls else "640x400"]
+                "--field", field, "--size", size]
         if controls:
             shot.append("--controls")
         subprocess.run(shot, check=True, env={**os.environ, "SINEW_BROWSER_TOOLS": str(TOOLS)})
 
 
 def main():
-    names = sys.argv[1:] or list(EXAMPLES)
-    unknown = [n for n in names if n not in EXAMPLES]
+    names = sys.argv[1:] or list(EXAMPLES) + list(PLOTS)
+    unknown = [n for n in names if n not in EXAMPLES and n not in PLOTS]
     if unknown:
-        sys.exit(f"render_docs_images: unknown example(s) {', '.join(unknown)}; known: {', '.join(EXAMPLES)}")
+        sys.exit(f"render_docs_images: unknown picture(s) {', '.join(unknown)}; known: {', '.join(list(EXAMPLES) + list(PLOTS))}")
     for need, what in ((SINEW, "build/sinew (run scripts/setup)"), (TOOLS / "node_modules", "the browser test tools (run scripts/setup-browser-tests)")):
         if not need.exists():
             sys.exit(f"render_docs_images: {what} not found")
@@ -88,7 +109,10 @@ def main():
     OUT.mkdir(parents=True, exist_ok=True)
     for name in names:
         start = time.monotonic()
-        render(name, *EXAMPLES[name])
+        if name in PLOTS:
+            subprocess.run(PLOTS[name], check=True, cwd=ROOT)
+        else:
+            render(name, *EXAMPLES[name])
         print(f"render_docs_images: {name} in {time.monotonic() - start:.1f} s", flush=True)
 
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "sinew/core/error.hpp"
 #include "sinew/mesh/shape_mesh.hpp"
 #include "sinew/mesh/surface.hpp"
 #include "sinew/motion/bone_surface.hpp"

@@ -40,6 +40,20 @@ expect_ok plot "$TMP/q/out"
 check_images "$TMP/q/out/plots" convergence reactions volume energy stress_stretch
 [[ $(wc -l <"$TMP/out") -eq 10 ]] || fail "plot should list 10 files: $(cat "$TMP/out")"
 
+# Each frame records its residual after every Newton iteration; the convergence plot reads them
+# (one curve per frame).
+"$PY" - "$TMP/q/out/summary.json" "$(dirname "$0")/../../scripts" <<'PYEOF' || fail "per-iteration residuals"
+import json, sys
+d = json.load(open(sys.argv[1]))
+for f in d["frames"]:
+    assert len(f["residuals"]) == f["newton_iterations"] >= 1, f
+    assert f["residuals"][-1] == f["residual"], f
+sys.path.insert(0, sys.argv[2])
+import sinew_plot
+run = sinew_plot.read_summary(sys.argv[1])
+assert run.residual_history == [f["residuals"] for f in d["frames"]]
+PYEOF
+
 # --plots, --format and --only.
 expect_ok plot "$TMP/q/out" --plots "$TMP/q/only" --format svg --only volume,reactions
 [[ -f $TMP/q/only/volume.svg && -f $TMP/q/only/reactions.svg ]] || fail "--only/--format files"
