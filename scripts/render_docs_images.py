@@ -76,11 +76,20 @@ def render(picture, scene_name, changes, frames, frame, field, controls):
     merge(scene, changes)
     with tempfile.TemporaryDirectory(prefix=f"sinew-docs-{name}-") as tmp:
         tmp = Path(tmp)
-        # The scene's relative paths (meshes/, rigs/) resolve against its folder: mirror it.
-        for entry in source.parent.iterdir():
-            if entry.is_dir():
-                (tmp / entry.name).symlink_to(entry)
-        small = tmp / f"{name}.json"
+        # The scene's relative paths (meshes/, rigs/, ../meshes/) resolve against its folder:
+        # mirror examples/ with links, the scene's own folder as a real one holding the small scene.
+        examples = ROOT / "examples"
+        mirror = tmp / "examples"
+        mirror.mkdir()
+        for entry in examples.iterdir():
+            if entry != source.parent:
+                (mirror / entry.name).symlink_to(entry)
+        folder = mirror / source.parent.relative_to(examples)
+        folder.mkdir(exist_ok=True)
+        if source.parent != examples:
+            for entry in source.parent.iterdir():
+                (folder / entry.name).symlink_to(entry)
+        small = folder / f"{name}.small.json"
         small.write_text(json.dumps(scene, indent=1))
         out = tmp / "out"
         run = [str(SINEW), "run", str(small), "--out", str(out), "--quiet"]
