@@ -31,6 +31,7 @@ std::optional<PaperTwistFigure> paper_twist_figure(const std::string& family) {
 
 SolverSpec paper_solver(double linear_tolerance, int max_newton_iterations) {
   SolverSpec s;
+  s.newton.test = ConvergenceTest::Absolute;
   s.newton.absolute_tolerance = 1e-2;
   s.newton.max_iterations = max_newton_iterations;
   s.newton.linear_tolerance = linear_tolerance;
@@ -73,9 +74,9 @@ Scene stretch_scene(const StretchConfig& c) {
   // Each end face moves outwards by half the elongation, spread evenly over the frames.
   const double per_frame = 0.5 * (c.stretch - 1.0) * c.length / c.frames;
   s.boundary.push_back({"bottom", PlaneSelector{Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ()},
-                        Translation{Eigen::Vector3d(0.0, 0.0, -per_frame)}});
+                        Translation{Eigen::Vector3d(0.0, 0.0, -per_frame)}, {true, true, true}, {}});
   s.boundary.push_back({"top", PlaneSelector{Eigen::Vector3d(0.0, 0.0, c.length), Eigen::Vector3d::UnitZ()},
-                        Translation{Eigen::Vector3d(0.0, 0.0, per_frame)}});
+                        Translation{Eigen::Vector3d(0.0, 0.0, per_frame)}, {true, true, true}, {}});
   s.solver = c.solver;
   s.frames = c.frames;
   s.output.vtu = false;
@@ -93,10 +94,12 @@ Scene twist_scene(const TwistConfig& c) {
   s.mesh.source = BoxShape{Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()};
   s.mesh.cells = Eigen::Vector3i::Constant(c.cells);
   s.material = normalised_material(c.family, c.E, c.nu);
-  s.boundary.push_back({"bottom", PlaneSelector{Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ()}, Pinned{}});
+  s.boundary.push_back({"bottom", PlaneSelector{Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ()}, Pinned{}, {true, true, true}, {}});
   s.boundary.push_back({"top", PlaneSelector{Eigen::Vector3d(0.0, 0.0, 1.0), Eigen::Vector3d::UnitZ()},
                         Rotation{Eigen::Vector3d(0.5, 0.5, 1.0), Eigen::Vector3d::UnitZ(),
-                                 c.degrees_per_frame * std::numbers::pi / 180.0}});
+                                 c.degrees_per_frame * std::numbers::pi / 180.0},
+                        {true, true, true},
+                        {}});
   s.solver = c.solver;
   s.frames = c.frames;
   s.output.vtu = false;
@@ -172,7 +175,7 @@ ExperimentRun run_experiment(const Scene& scene, const ExperimentOptions& option
   std::vector<KinematicCondition> kinematics;
   for (const auto& b : scene.boundary)
     kinematics.push_back({select_vertices(mesh.vertices, b.select, where + ": boundary " + b.name), b.motion,
-                          where + ": boundary " + b.name + " motion"});
+                          where + ": boundary " + b.name + " motion", b.components, b.direction});
   auto linear = make_linear_solver(scene.solver.linear);
 
   ExperimentRun run;
@@ -287,6 +290,7 @@ ScrambleResult run_scramble(const ScrambleConfig& c) {
     }
   }
   NewtonSettings settings;
+  settings.test = ConvergenceTest::Absolute;
   settings.absolute_tolerance = c.tolerance;
   settings.max_iterations = c.max_iterations;
   settings.linear_tolerance = c.linear_tolerance;

@@ -59,6 +59,7 @@ struct Block {
   }
   void make_stepper(double tolerance, double friction_velocity = 1e-2) {
     TimeStepSettings s;
+    s.newton.test = ConvergenceTest::Absolute;
     s.newton.absolute_tolerance = tolerance;
     s.friction_velocity = friction_velocity;
     stepper = std::make_unique<TimeStepper>(*problem, inertia, nullptr, contact, std::vector<KinematicCondition>{},

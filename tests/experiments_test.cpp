@@ -44,8 +44,8 @@ void expect_same_scene(const Scene& file, const Scene& built) {
   EXPECT_EQ(a.elements, b.elements);
   EXPECT_LT((a.vertices - b.vertices).cwiseAbs().maxCoeff(), 1e-12);
   std::vector<KinematicCondition> ka, kb;
-  for (const auto& c : file.boundary) ka.push_back({select_vertices(a.vertices, c.select, c.name), c.motion, c.name});
-  for (const auto& c : built.boundary) kb.push_back({select_vertices(b.vertices, c.select, c.name), c.motion, c.name});
+  for (const auto& c : file.boundary) ka.push_back({select_vertices(a.vertices, c.select, c.name), c.motion, c.name, {true, true, true}, {}});
+  for (const auto& c : built.boundary) kb.push_back({select_vertices(b.vertices, c.select, c.name), c.motion, c.name, {true, true, true}, {}});
   Eigen::VectorXd xa = a.rest_positions(), xb = b.rest_positions();
   std::vector<char> fa(xa.size(), 0), fb(xb.size(), 0);
   apply_kinematics(ka, a.vertices, file.frames, xa, fa);

@@ -117,6 +117,7 @@ TEST_P(MeshDerivatives, PatchTestReproducesAffineField) {
   problem.set_fixed(fixed);
   auto linear = make_linear_solver({});
   NewtonSettings settings;
+  settings.test = ConvergenceTest::Absolute;
   settings.absolute_tolerance = 1e-11;
   const NewtonReport r = newton_solve(problem, x, *linear, settings);
   ASSERT_TRUE(r.converged) << r.failure;

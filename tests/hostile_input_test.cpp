@@ -221,7 +221,7 @@ TEST(HostileInput, TetrahedralizeHonoursMaxEdgeOnACoarseSurface) {
 
 TEST(HostileInput, AMotionThatOverflowsNamesItsSourceAndFrame) {
   const Eigen::MatrixX3d rest = Eigen::MatrixX3d::Zero(2, 3);
-  std::vector<KinematicCondition> conditions = {{{1}, Translation{Eigen::Vector3d(1e308, 0, 0)}, "s.json: /boundary/0/motion"}};
+  std::vector<KinematicCondition> conditions = {{{1}, Translation{Eigen::Vector3d(1e308, 0, 0)}, "s.json: /boundary/0/motion", {true, true, true}, {}}};
   Eigen::VectorXd x = Eigen::VectorXd::Zero(6);
   std::vector<char> fixed(6, 0);
   apply_kinematics(conditions, rest, 1.0, x, fixed);  // 1e308: still finite

@@ -27,13 +27,14 @@ TwistOutcome run_twist(const std::string& solver_kind) {
   Problem problem(mesh.num_vertices());
   problem.add_form(form);
   std::vector<KinematicCondition> bcs;
-  bcs.push_back({select_vertices(mesh.vertices, PlaneSelector{{0, 0, 0}, {0, 0, -1}}, "bottom"), Pinned{}, "bottom"});
+  bcs.push_back({select_vertices(mesh.vertices, PlaneSelector{{0, 0, 0}, {0, 0, -1}}, "bottom"), Pinned{}, "bottom", {true, true, true}, {}});
   bcs.push_back({select_vertices(mesh.vertices, PlaneSelector{{0, 0, 1}, {0, 0, 1}}, "top"),
-                 Rotation{{0.5, 0.5, 1.0}, {0, 0, 1}, std::numbers::pi / 2}, "top"});
+                 Rotation{{0.5, 0.5, 1.0}, {0, 0, 1}, std::numbers::pi / 2}, "top", {true, true, true}, {}});
   LinearSolverSettings ls;
   ls.kind = solver_kind;
   auto linear = make_linear_solver(ls);
   NewtonSettings settings;
+  settings.test = ConvergenceTest::Absolute;
   settings.absolute_tolerance = 1e-8;
   settings.linear_tolerance = 1e-6;
   Eigen::VectorXd x = mesh.rest_positions();

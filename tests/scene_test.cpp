@@ -55,8 +55,9 @@ TEST(Scene, MinimalSceneGetsTheDocumentedDefaults) {
   EXPECT_TRUE(s.output.vtu);
   EXPECT_TRUE(s.output.obj);
   EXPECT_EQ(s.output.every, 1);
-  EXPECT_EQ(s.solver.newton.absolute_tolerance, 1e-2);
-  EXPECT_EQ(s.solver.newton.relative_tolerance, 0.0);
+  EXPECT_EQ(s.solver.newton.test, ConvergenceTest::Relative);  // dimensionless by default
+  EXPECT_EQ(s.solver.newton.residual_tolerance, 1e-6);
+  EXPECT_EQ(s.solver.newton.step_tolerance, 1e-4);
   EXPECT_EQ(s.solver.newton.max_iterations, 100);
   EXPECT_EQ(s.solver.linear.kind, "cholmod");
   EXPECT_EQ(s.solver.linear.preconditioner, "block_jacobi");
@@ -82,7 +83,7 @@ TEST(Scene, EveryFieldIsRead) {
     "loads": {"gravity": [0, 0, -9.81],
               "point": [{"select": {"indices": [2]}, "force": [1, 2, 3]}],
               "traction": [{"select": {"plane": {"point": [0, 0, 0], "normal": [0, 1, 0]}}, "traction": [0, 5, 0]}]},
-    "solver": {"newton": {"tolerance": 1e-6, "relative_tolerance": 1e-3, "max_iterations": 7, "line_search_steps": 9},
+    "solver": {"newton": {"convergence": "absolute", "tolerance": 1e-6, "relative_tolerance": 1e-3, "max_iterations": 7, "line_search_steps": 9},
                "linear": {"kind": "pcg", "preconditioner": "jacobi", "tolerance": 1e-5, "eisenstat_walker": true,
                           "max_iterations": 123},
                "projection": "abs"},
@@ -119,6 +120,7 @@ TEST(Scene, EveryFieldIsRead) {
   EXPECT_EQ(s.point_loads[0].force, Eigen::Vector3d(1, 2, 3));
   ASSERT_EQ(s.tractions.size(), 1u);
   EXPECT_EQ(s.tractions[0].traction, Eigen::Vector3d(0, 5, 0));
+  EXPECT_EQ(s.solver.newton.test, ConvergenceTest::Absolute);
   EXPECT_EQ(s.solver.newton.absolute_tolerance, 1e-6);
   EXPECT_EQ(s.solver.newton.relative_tolerance, 1e-3);
   EXPECT_EQ(s.solver.newton.max_iterations, 7);
@@ -236,7 +238,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"boundary": [{"select": {"plane": {"point": [0,0,0], "normal": [0,0,0]}}}]})",
                  "/boundary/0/select/plane/normal: must be non-zero"},
         BadScene{R"({"boundary": [{"select": {"indices": [0]}, "motion": {"type": "spin"}}]})",
-                 "/boundary/0/motion/type: unknown value 'spin' (expected one of: pinned, translate, rotate, keyframes)"},
+                 "/boundary/0/motion/type: unknown value 'spin' (expected one of: pinned, translate, rotate, keyframes, displace)"},
         BadScene{R"({"boundary": [{"select": {"indices": [0]}, "motion": {"type": "pinned", "per_frame": [0,0,1]}}]})",
                  "/boundary/0/motion/per_frame: does not apply here"},
         BadScene{R"({"boundary": [{"select": {"indices": [0]}, "motion": {"type": "keyframes", "keys": []}}]})",
@@ -245,8 +247,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "/boundary/0/motion/keys/1/frame: must be after the previous keyframe's (1 <= 1)"},
         BadScene{R"({"boundary": [{"select": {"indices": [0]}, "motion": {"type": "keyframes", "keys": [{"frame": 1, "rotation": {"axis": [0,0,0], "degrees": 3}}]}}]})",
                  "/boundary/0/motion/keys/0/rotation/axis: must be non-zero"},
-        BadScene{R"({"solver": {"newton": {"tolerance": 0}}})", "/solver/newton/tolerance: must be a positive number, got 0"},
-        BadScene{R"({"solver": {"newton": {"relative_tolerance": 1}}})", "/solver/newton/relative_tolerance: must be in [0, 1)"},
+        BadScene{R"({"solver": {"newton": {"convergence": "absolute", "tolerance": 0}}})", "/solver/newton/tolerance: must be a positive number, got 0"},
+        BadScene{R"({"solver": {"newton": {"convergence": "absolute", "relative_tolerance": 1}}})", "/solver/newton/relative_tolerance: must be in [0, 1)"},
+        BadScene{R"({"solver": {"newton": {"tolerance": 1e-3}}})", "/solver/newton/tolerance: is a setting of the absolute test"},
+        BadScene{R"({"solver": {"newton": {"convergence": "absolute", "step_tolerance": 1e-3}}})", "/solver/newton/step_tolerance: is a setting of the relative test"},
+        BadScene{R"({"solver": {"newton": {"residual_tolerance": 2}}})", "/solver/newton/residual_tolerance: must be below 1"},
         BadScene{R"({"solver": {"newton": {"max_iterations": 0}}})", "/solver/newton/max_iterations: must be at least 1, got 0"},
         BadScene{R"({"solver": {"linear": {"tolerance": 1.5}}})", "/solver/linear/tolerance: must be below 1"},
         BadScene{R"({"solver": {"linear": {"kind": "pardiso"}}})", "/solver/linear/kind: unknown value 'pardiso'"},

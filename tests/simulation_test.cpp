@@ -34,7 +34,7 @@ json bar(const std::string& element = "hex") {
       {"name": "right", "select": {"plane": {"point": [1, 0, 0], "normal": [1, 0, 0]}},
        "motion": {"type": "translate", "per_frame": [0.1, 0, 0]}}
     ],
-    "solver": {"newton": {"tolerance": 1e-7}},
+    "solver": {"newton": {"convergence": "absolute", "tolerance": 1e-7}},
     "frames": 4
   })");
   j["mesh"]["element"] = element;
@@ -246,7 +246,7 @@ TEST(Simulation, ResumeRefusesAChangedSceneOrAMissingCheckpoint) {
 TEST(Simulation, UnconvergedFrameIsReportedAndStopsTheRun) {
   TempDir dir;
   json j = bar();
-  j["solver"]["newton"] = {{"tolerance", 1e-9}, {"max_iterations", 1}};
+  j["solver"]["newton"] = {{"convergence", "absolute"}, {"tolerance", 1e-9}, {"max_iterations", 1}};
   j["boundary"][1]["motion"]["per_frame"] = {0.8, 0, 0};
   const Scene scene = scene_in(dir, j);
   const RunSummary s = run(scene, dir / "out");
@@ -273,7 +273,7 @@ TEST(Simulation, LargeFrameStepsAreSplitUntilTheyConverge) {
   json j = bar();
   j["boundary"][1]["motion"]["per_frame"] = {2.4, 0, 0};
   j["frames"] = 1;
-  j["solver"]["newton"] = {{"tolerance", 1e-6}, {"max_iterations", 15}};
+  j["solver"]["newton"] = {{"convergence", "absolute"}, {"tolerance", 1e-6}, {"max_iterations", 15}};
   const RunSummary s = run(scene_in(dir, j));
   ASSERT_TRUE(s.all_converged()) << s.frames[0].failure;
   EXPECT_GT(s.frames[0].substeps, 1);
@@ -304,7 +304,7 @@ Balance solve_loaded(const json& loads, const std::string& element) {
     "material": {"family": "stable_neo_hookean", "E": 1e5, "nu": 0.3},
     "density": 800,
     "boundary": [{"name": "wall", "select": {"plane": {"point": [0, 0, 0], "normal": [-1, 0, 0]}}}],
-    "solver": {"newton": {"tolerance": 1e-9}}
+    "solver": {"newton": {"convergence": "absolute", "tolerance": 1e-9}}
   })");
   j["mesh"]["element"] = element;
   j["loads"] = loads;

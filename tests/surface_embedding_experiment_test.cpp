@@ -34,7 +34,7 @@ TEST(SurfaceEmbeddingExperiment, DeformedSurfaceStaysWatertightAndFollowsTheLatt
       "material": {{"family": "stable_neo_hookean", "E": 1e6, "nu": 0.3}},
       "density": 1000, "loads": {{"gravity": [0, 0, -9.81]}},
       "boundary": [{{"name": "pinned", "select": {{"box": {{"min": [-1, -1, -1], "max": [0.2, 2, 2]}}}}}}],
-      "solver": {{"newton": {{"tolerance": 1e-8}}}},
+      "solver": {{"newton": {{"convergence": "absolute", "tolerance": 1e-8}}}},
       "frames": 1
     }})", torus_file.string(), resolution);
     RunOptions options;

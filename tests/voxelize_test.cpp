@@ -140,7 +140,7 @@ TEST(Voxelize, NonManifoldCubesDoNotDragEachOther) {
       "material": {{"family": "stable_neo_hookean", "E": 1e6, "nu": 0.3}},
       "density": 1000, "loads": {{"gravity": [0, 0, -9.81]}},
       "boundary": [{{"name": "a", "select": {{"plane": {{"point": [0, 0, 0], "normal": [-1, 0, 0]}}}}}}{}],
-      "solver": {{"newton": {{"tolerance": 1e-9}}}},
+      "solver": {{"newton": {{"convergence": "absolute", "tolerance": 1e-9}}}},
       "output": {{"obj": false}}
     }})", surface, size, non_manifold ? "true" : "false",
         clamp_b ? R"(, {"name": "b", "select": {"plane": {"point": [2, 0, 0], "normal": [1, 0, 0]}}})" : "");

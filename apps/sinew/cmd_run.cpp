@@ -1,5 +1,5 @@
 // `sinew run SCENE.json [--out DIR] [--frames N] [--threads N] [--progress auto|live|plain]
-// [--verbose] [--quiet] [--resume] [--viewer]`.
+// [--verbose] [--quiet] [--resume] [--strict] [--viewer]`.
 #include "cmd_run.hpp"
 
 #include <algorithm>
@@ -19,7 +19,7 @@ namespace {
 
 struct Options {
   std::string scene, out, frames, threads, progress = "auto";
-  bool quiet = false, verbose = false, resume = false, viewer = false;
+  bool quiet = false, verbose = false, resume = false, strict = false, viewer = false;
 };
 
 void run(const Options& o, int& exit_code) {
@@ -38,6 +38,7 @@ void run(const Options& o, int& exit_code) {
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(t));
   }
   ro.resume = o.resume;
+  ro.strict = o.strict;
   if (o.viewer && !scene.output.vtu)
     throw Error("the viewer is built from the run's VTU frames, and this scene has \"output\": {\"vtu\": false}", "--viewer");
   // Energy-limited dynamics (paper 001) has no Newton iterations: it reports its SQP and PGS
@@ -45,6 +46,11 @@ void run(const Options& o, int& exit_code) {
   const ProgressStyle style = o.quiet ? ProgressStyle::Quiet : progress_style(o.progress, stderr);
   auto printer = std::make_shared<ProgressPrinter>(style, o.verbose && !o.quiet, scene.constraints.has_value());
   if (style != ProgressStyle::Quiet) ro.progress = [printer](const ProgressEvent& e) { (*printer)(e); };
+  // Warnings are printed even with --quiet: they are about the answer, not the progress.
+  ro.warning = [printer](const std::string& w) {
+    printer->clear_line();
+    fmt::print(stderr, "sinew: warning: {}\n", w);
+  };
   const auto t0 = std::chrono::steady_clock::now();
   RunSummary s;
   try {
@@ -86,6 +92,7 @@ Command add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--verbose", opts->verbose, "also one line per Newton iteration");
   cmd->add_flag("--quiet", opts->quiet, "only errors and warnings (no progress, no results line)");
   cmd->add_flag("--resume", opts->resume, "continue from the output folder's checkpoint");
+  cmd->add_flag("--strict", opts->strict, "treat warnings (e.g. a selector taking every vertex) as errors");
   cmd->add_flag("--viewer", opts->viewer, "also write the browser viewer (viewer.html, viewer.glb; docs/viewer.md)");
   return {cmd, [opts, &exit_code] {
             try {

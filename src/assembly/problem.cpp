@@ -1,5 +1,6 @@
 #include "sinew/assembly/problem.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <tbb/parallel_for.h>
 
@@ -21,6 +22,35 @@ void Problem::set_fixed(const std::vector<char>& fixed_dofs) {
   fixed_ = fixed_dofs;
 }
 
+void Problem::set_vertex_frames(const std::vector<std::pair<int, Mat3>>& frames) {
+  frames_.clear();
+  framed_vertices_.clear();
+  frame_of_.clear();
+  if (frames.empty()) return;
+  frames_.reserve(frames.size());
+  for (const auto& [v, Q] : frames) {
+    if (v < 0 || v >= num_vertices_) throw Error("vertex frame of a vertex outside the mesh", "problem");
+    framed_vertices_.push_back(v);
+    frames_.push_back(Q);
+  }
+  frame_of_.assign(num_vertices_, nullptr);
+  for (size_t i = 0; i < frames_.size(); ++i) frame_of_[framed_vertices_[i]] = &frames_[i];
+}
+
+void Problem::to_global(Eigen::VectorXd& d) const {
+  for (size_t i = 0; i < frames_.size(); ++i) {
+    auto seg = d.segment<3>(3 * framed_vertices_[i]);
+    seg = (frames_[i] * seg).eval();
+  }
+}
+
+void Problem::to_local(Eigen::VectorXd& g) const {
+  for (size_t i = 0; i < frames_.size(); ++i) {
+    auto seg = g.segment<3>(3 * framed_vertices_[i]);
+    seg = (frames_[i].transpose() * seg).eval();
+  }
+}
+
 void Problem::set_discretization(std::shared_ptr<const Discretization> discretization) {
   if (discretization && discretization->mesh().num_vertices() != num_vertices_)
     throw Error("the discretisation's vertex count differs from the problem's", "problem");
@@ -35,8 +65,21 @@ double Problem::value(const Eigen::VectorXd& x) const {
 }
 
 Eigen::VectorXd Problem::gradient(const Eigen::VectorXd& x) const {
+  double unused = 0.0;
+  return gradient(x, unused);
+}
+
+Eigen::VectorXd Problem::gradient(const Eigen::VectorXd& x, double& force_scale) const {
   Eigen::VectorXd g = Eigen::VectorXd::Zero(num_dofs());
-  for (const auto& f : forms_) f->add_gradient(x, g);
+  Eigen::VectorXd gf(num_dofs());
+  force_scale = 0.0;
+  for (const auto& f : forms_) {
+    gf.setZero();
+    f->add_gradient(x, gf);
+    force_scale = std::max(force_scale, gf.norm());
+    g += gf;
+  }
+  to_local(g);
   for (Eigen::Index i = 0; i < num_dofs(); ++i)
     if (fixed_[i]) g(i) = 0.0;
   return g;
@@ -76,6 +119,7 @@ const LinearOperator& Problem::hessian(const Eigen::VectorXd& x) {
   ensure_pattern();
   hessian_->set_zero();
   for (const auto& f : forms_) f->add_hessian(x, *hessian_);
+  if (!frame_of_.empty()) hessian_->change_basis(frame_of_);
   Eigen::SparseMatrix<double>& A = hessian_->matrix();
   // Identity rows and columns at fixed DOFs (keeps symmetry and the pattern).
   tbb::parallel_for(Eigen::Index(0), A.outerSize(), [&](Eigen::Index c) {

@@ -10,6 +10,13 @@ EnergyLimitedIntegrator::EnergyLimitedIntegrator(std::unique_ptr<EnergyLimitedSt
                                                  PrescribedMotion motion, int steps_per_frame)
     : stepper_(std::move(stepper)), motion_(std::move(motion)), steps_per_frame_(steps_per_frame) {}
 
+std::string EnergyLimitedIntegrator::convergence_test() const {
+  const EnergyLimitedStepSettings& s = stepper_->settings();
+  return fmt::format("SQP per time step: every element energy <= (1 + {:g}) x its limit and obstacle penetration <= "
+                     "{:g} (a length), within {} SQP iterations",
+                     s.energy_tolerance, s.contact_tolerance, s.sqp_max_iterations);
+}
+
 StepStats EnergyLimitedIntegrator::advance_frame(State& state, int frame, const IterationProgress& progress) {
   const EnergyLimitedStepSettings& settings = stepper_->settings();
   StepStats stats;

@@ -18,6 +18,14 @@ std::string ImplicitDynamicsIntegrator::description() const {
   return scheme_ == DynamicsScheme::BackwardEuler ? "backward Euler dynamics" : "semi-implicit dynamics";
 }
 
+std::string ImplicitDynamicsIntegrator::convergence_test() const {
+  if (scheme_ == DynamicsScheme::SemiImplicit)
+    return "semi-implicit: one linearised solve per time step, not iterated to equilibrium; a step counts as "
+           "converged when its state is valid (finite, no inverted element); the residual after it is reported, "
+           "not tested";
+  return "backward Euler, every time step: " + describe_convergence_test(stepper_->settings().newton);
+}
+
 StepStats ImplicitDynamicsIntegrator::advance_frame(State& state, int frame, const IterationProgress& progress) {
   StepStats stats;
   auto newton_progress = [&](const NewtonIterate& it) {

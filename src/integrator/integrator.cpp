@@ -33,6 +33,7 @@ void StepStats::accumulate(const StepStats& part) {
   linear_iterations += part.linear_iterations;
   substeps += part.substeps;
   residual = part.residual;
+  force_scale = part.force_scale;
   energy = part.energy;
   seconds += part.seconds;
   assembly_seconds += part.assembly_seconds;

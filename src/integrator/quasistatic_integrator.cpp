@@ -34,14 +34,22 @@ StepStats QuasistaticIntegrator::advance_frame(State& state, int frame, const It
     stats.assembly_seconds += r.assembly_seconds;
     stats.solve_seconds += r.solve_seconds;
     stats.residual = r.residual;
+    stats.force_scale = r.force_scale;
     stats.energy = r.energy;
     if (r.converged) {
       x = trial;
       solved = target;
       stats.substeps += 1;
       step = std::min(1.0, 2.0 * step);
-    } else if (step > min_step) {
+    } else if (step > min_step && !r.tolerance_unreachable) {
       step *= 0.5;
+    } else if (step > min_step) {
+      // The tolerance, not the size of the motion, is the problem: a smaller step would fail the
+      // same way, only slower.
+      x = trial;
+      stats.converged = false;
+      stats.failure = r.failure + " (not split: a smaller motion step cannot reach it either)";
+      break;
     } else {
       x = trial;  // kept for inspection, never continued from
       stats.converged = false;

@@ -39,6 +39,7 @@ StepStats TimeStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double frame
   out.newton_iterations = r.iterations;
   out.linear_iterations = r.linear_iterations;
   out.residual = r.residual;
+  out.force_scale = r.force_scale;
   out.energy = r.energy;
   out.assembly_seconds = r.assembly_seconds;
   out.solve_seconds = r.solve_seconds;

@@ -64,4 +64,21 @@ void BlockHessian::add_block(int a, int b, const Mat3& M) {
   add_block_at_slot(b, k, M);
 }
 
+void BlockHessian::change_basis(const std::vector<const Mat3*>& frames) {
+  double* values = A_.valuePtr();
+  const auto* outer = A_.outerIndexPtr();
+  for (size_t b = 0; b < rows_.size(); ++b) {
+    const Mat3* Qb = frames[b];
+    for (size_t k = 0; k < rows_[b].size(); ++k) {
+      const Mat3* Qa = frames[rows_[b][k]];
+      if (!Qa && !Qb) continue;
+      Mat3 M;
+      for (int j = 0; j < 3; ++j) M.col(j) = Eigen::Map<const Eigen::Vector3d>(values + outer[3 * b + j] + 3 * k);
+      if (Qa) M = Qa->transpose() * M;
+      if (Qb) M = M * *Qb;
+      for (int j = 0; j < 3; ++j) Eigen::Map<Eigen::Vector3d>(values + outer[3 * b + j] + 3 * k) = M.col(j);
+    }
+  }
+}
+
 }  // namespace sinew

@@ -1,6 +1,7 @@
 #include "sinew/model/model.hpp"
 
 #include <fmt/format.h>
+#include <numbers>
 
 #include "sinew/constraints/obstacle_contacts.hpp"
 #include "sinew/core/error.hpp"
@@ -49,6 +50,13 @@ Eigen::VectorXd traction_forces(const VolumeMesh& mesh, const BoundarySurface& s
 
 // The elastic form: the scene's material, or corotational hexahedra for the energy-limited
 // "corotational" model.
+// Scales for dimensionless convergence tests: the body's size (bounding-box diagonal) and the
+// force that strains it by one (shear modulus x size^2).
+Problem::Scales problem_scales(const VolumeMesh& mesh, const Lame& lame) {
+  const double size = (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).norm();
+  return {size, std::abs(lame.mu) * size * size};
+}
+
 void build_elastic(const Scene& scene, Model& m) {
   const std::string file = scene.file.string();
   const bool corotational = scene.constraints && scene.constraints->model == "corotational";
@@ -67,25 +75,113 @@ void build_elastic(const Scene& scene, Model& m) {
   }
 }
 
-// The scene's boundary conditions; a vertex moved by two different motions has no
-// well-defined position.
+// The scene's boundary conditions. Each prescribes all coordinates of its vertices, some of them,
+// or the motion along one direction. A coordinate (or direction) prescribed twice must be pinned
+// both times: two motions of one coordinate have no well-defined position. A vertex with a
+// direction that is not a coordinate axis gets a rotated frame whose first axes are its
+// prescribed directions, which must then be mutually orthogonal (e.g. two inclined symmetry
+// planes at right angles).
 void build_boundary(const Scene& scene, Model& m) {
   const std::string file = scene.file.string();
   const VolumeMesh& mesh = m.disc->mesh();
-  std::vector<int>& owner = m.boundary_owner;
-  owner.assign(mesh.num_vertices(), -1);
+  const Eigen::Index n = mesh.num_vertices();
+  m.dof_owner.assign(3 * n, -1);
+  struct Prescribed {
+    Eigen::Vector3d direction;
+    int condition;
+  };
+  std::vector<std::vector<Prescribed>> at(n);  // every prescribed direction of each vertex
   for (size_t i = 0; i < scene.boundary.size(); ++i) {
     const auto& b = scene.boundary[i];
     const std::string where = fmt::format("{}: /boundary/{}/select", file, i);
     KinematicCondition c{select_vertices(mesh.vertices, b.select, where), b.motion,
-                         fmt::format("{}: /boundary/{}/motion", file, i)};
+                         fmt::format("{}: /boundary/{}/motion", file, i), b.components, b.direction};
+    // A direction along a coordinate axis is that component: no rotated frame needed.
+    if (c.direction)
+      for (int k = 0; k < 3; ++k)
+        if (std::abs((*c.direction)(k)) == 1.0) {
+          c.components = {k == 0, k == 1, k == 2};
+          c.direction.reset();
+        }
+    if (static_cast<Eigen::Index>(c.vertices.size()) == n)
+      m.warnings.push_back(fmt::format("{}: boundary condition '{}' selects every vertex of the body ({}); check its "
+                                       "selector",
+                                       where, b.name, n));
+    const bool pinned = std::holds_alternative<Pinned>(b.motion);
     for (int v : c.vertices) {
-      if (owner[v] >= 0 && !(std::holds_alternative<Pinned>(b.motion) &&
-                             std::holds_alternative<Pinned>(scene.boundary[owner[v]].motion)))
-        throw Error(fmt::format("vertex {} is also selected by /boundary/{} with a different motion", v, owner[v]), where);
-      if (owner[v] < 0) owner[v] = static_cast<int>(i);
+      std::vector<Eigen::Vector3d> dirs;
+      if (c.direction) dirs.push_back(*c.direction);
+      for (int k = 0; k < 3; ++k)
+        if (!c.direction && c.components[k]) dirs.push_back(Eigen::Vector3d::Unit(k));
+      for (const Eigen::Vector3d& d : dirs) {
+        for (const Prescribed& p : at[v]) {
+          const double cosine = std::abs(p.direction.dot(d));
+          if (cosine > 1.0 - 1e-12) {  // the same coordinate again
+            if (pinned && std::holds_alternative<Pinned>(scene.boundary[p.condition].motion)) goto next_direction;
+            throw Error(fmt::format("vertex {} is also prescribed along ({:g}, {:g}, {:g}) by /boundary/{} with a "
+                                    "different motion",
+                                    v, d(0), d(1), d(2), p.condition),
+                        where);
+          }
+          if (cosine > 1e-9)
+            throw Error(fmt::format("vertex {} is also prescribed by /boundary/{} along a direction at {:.4g} degrees to "
+                                    "this one; directions prescribed at one vertex must be orthogonal",
+                                    v, p.condition, std::acos(std::min(1.0, cosine)) * 180.0 / std::numbers::pi),
+                        where);
+        }
+        at[v].push_back({d, static_cast<int>(i)});
+      next_direction:;
+      }
     }
     m.kinematics.push_back(std::move(c));
+  }
+  // Owners of global DOFs, and rotated frames where some direction is not an axis.
+  std::vector<std::pair<int, Mat3>> frames;
+  for (Eigen::Index v = 0; v < n; ++v) {
+    const auto& dirs = at[v];
+    const bool axes = std::all_of(dirs.begin(), dirs.end(), [](const Prescribed& p) {
+      return (p.direction.array().abs() == 1.0).any();
+    });
+    if (axes) {
+      for (const Prescribed& p : dirs) {
+        Eigen::Index k = 0;
+        p.direction.cwiseAbs().maxCoeff(&k);
+        m.dof_owner[3 * v + k] = p.condition;
+      }
+      continue;
+    }
+    Mat3 Q = vertex_frame(dirs[0].direction);
+    if (dirs.size() >= 2) {
+      Q.col(1) = dirs[1].direction;
+      Q.col(2) = dirs[0].direction.cross(dirs[1].direction).normalized();
+    }
+    frames.emplace_back(static_cast<int>(v), Q);
+    m.vertex_frames.push_back({static_cast<int>(v), static_cast<int>(dirs.size())});
+    for (const Prescribed& p : dirs) m.vertex_directions.push_back({static_cast<int>(v), p.condition, p.direction});
+  }
+  if (!frames.empty()) {
+    if (scene.constraints)
+      throw Error("a direction condition (roller on an inclined plane) is not available with energy-limited dynamics; "
+                  "use components along the coordinate axes",
+                  file + ": /boundary");
+    m.problem->set_vertex_frames(frames);
+  }
+  const bool all_fixed = n > 0 && m.vertex_frames.empty() &&
+                         std::all_of(m.dof_owner.begin(), m.dof_owner.end(), [](int o) { return o >= 0; });
+  if (all_fixed)
+    m.warnings.push_back(fmt::format("{}: /boundary: the boundary conditions prescribe every coordinate of every vertex: "
+                                     "the body is fully pinned and nothing is solved",
+                                     file));
+}
+
+// Marks the prescribed DOFs of rotated vertex frames (the first `count` local DOFs) in a fixed
+// mask that apply_kinematics and the rig filled in global terms; a vertex a bone holds keeps all
+// three fixed.
+void mark_frame_dofs(const std::vector<VertexFrameDofs>& frames, std::vector<char>& fixed) {
+  for (const auto& f : frames) {
+    char* d = &fixed[3 * f.vertex];
+    const bool held = d[0] && d[1] && d[2];
+    for (int j = 0; j < 3; ++j) d[j] = held || j < f.count;
   }
 }
 
@@ -107,24 +203,43 @@ void Model::prescribe(double frame, Eigen::VectorXd& x, std::vector<char>& fixed
   const Eigen::MatrixX3d& rest = disc->mesh().vertices;
   apply_kinematics(kinematics, rest, frame, x, fixed);
   rig.apply(frame, rest, x, fixed);
+  mark_frame_dofs(vertex_frames, fixed);
 }
 
-Eigen::VectorXd external_forces(const Scene& scene, const Discretization& disc, const BoundarySurface& surface) {
+std::vector<ScaledLoad> scene_loads(const Scene& scene, const Discretization& disc, const BoundarySurface& surface) {
   const std::string file = scene.file.string();
   const VolumeMesh& mesh = disc.mesh();
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(disc.num_dofs());
-  if (scene.gravity.squaredNorm() > 0.0) f += gravity_forces(lumped_mass(disc, scene.density), scene.gravity);
+  std::vector<ScaledLoad> loads;
+  if (scene.gravity.squaredNorm() > 0.0)
+    loads.push_back({gravity_forces(lumped_mass(disc, scene.density), scene.gravity), scene.gravity_amplitude});
   for (size_t i = 0; i < scene.point_loads.size(); ++i) {
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(disc.num_dofs());
     for (int v : select_vertices(mesh.vertices, scene.point_loads[i].select, fmt::format("{}: /loads/point/{}/select", file, i)))
       f.segment<3>(3 * v) += scene.point_loads[i].force;
+    loads.push_back({std::move(f), scene.point_loads[i].amplitude});
   }
   for (size_t i = 0; i < scene.tractions.size(); ++i) {
     const std::string where = fmt::format("{}: /loads/traction/{}/select", file, i);
-    f += traction_forces(mesh, surface, select_vertices(mesh.vertices, scene.tractions[i].select, where),
-                         scene.tractions[i].traction, where);
+    loads.push_back({traction_forces(mesh, surface, select_vertices(mesh.vertices, scene.tractions[i].select, where),
+                                     scene.tractions[i].traction, where),
+                     scene.tractions[i].amplitude});
   }
+  return loads;
+}
+
+Eigen::VectorXd loads_at(const std::vector<ScaledLoad>& loads, Eigen::Index num_dofs, double frame) {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(num_dofs);
+  for (const auto& l : loads) f += l.amplitude.at(frame) * l.forces;
   return f;
 }
+
+Eigen::VectorXd external_forces(const Scene& scene, const Discretization& disc, const BoundarySurface& surface) {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(disc.num_dofs());
+  for (const auto& l : scene_loads(scene, disc, surface)) f += l.forces;
+  return f;
+}
+
+Eigen::VectorXd Model::external_forces_at(double frame) const { return loads_at(loads, disc->num_dofs(), frame); }
 
 Model build_model(const Scene& scene) {
   const std::string file = scene.file.string();
@@ -137,16 +252,25 @@ Model build_model(const Scene& scene) {
   m.problem->set_discretization(m.disc);  // for the linear solver's context (lattice, preconditioners)
   m.problem->add_form(m.elastic);
   m.surface = boundary_surface(mesh);
-  m.external_forces = external_forces(scene, *m.disc, m.surface);
-  if (m.external_forces.squaredNorm() > 0.0) m.problem->add_form(std::make_shared<ExternalForceForm>(m.external_forces));
+  m.problem->set_scales(problem_scales(mesh, m.material.lame));
+  m.loads = scene_loads(scene, *m.disc, m.surface);
+  m.external_forces = Eigen::VectorXd::Zero(m.disc->num_dofs());
+  for (const auto& l : m.loads) m.external_forces += l.forces;
+  if (!m.loads.empty()) {
+    m.load_form = std::make_shared<ExternalForceForm>(m.external_forces_at(1.0));
+    m.problem->add_form(m.load_form);
+  }
   build_boundary(scene, m);
   m.rig = make_scene_rig(scene, mesh, *m.problem);  // bone springs and self-contact forms
   m.initial.x = mesh.rest_positions();
+  // Everything that depends on the frame number: prescribed positions and the loads' amplitudes.
   // Captures copies: the model is returned by value.
-  PrescribedMotion motion = [kinematics = m.kinematics, rest = mesh.vertices, rig = m.rig](
-                                double frame, Eigen::VectorXd& x, std::vector<char>& fixed) {
+  PrescribedMotion motion = [kinematics = m.kinematics, rest = mesh.vertices, rig = m.rig, loads = m.loads,
+                             load_form = m.load_form, frames = m.vertex_frames](double frame, Eigen::VectorXd& x, std::vector<char>& fixed) {
     apply_kinematics(kinematics, rest, frame, x, fixed);
     rig.apply(frame, rest, x, fixed);
+    mark_frame_dofs(frames, fixed);
+    if (load_form) load_form->forces() = loads_at(loads, x.size(), frame);
   };
 
   if (scene.constraints) {  // energy-limited dynamics (the scene reader requires `dynamics` with it)

@@ -58,11 +58,16 @@ VertexSelector parse_selector(JsonObject o) {
 }  // namespace
 
 RigidMotion parse_motion(JsonObject o) {
-  o.allow({"type", "per_frame", "center", "axis", "degrees_per_frame", "keys"});
-  const std::string type = o.choice("type", {"pinned", "translate", "rotate", "keyframes"}, "pinned");
+  o.allow({"type", "per_frame", "center", "axis", "degrees_per_frame", "keys", "displacement", "amplitude"});
+  const std::string type = o.choice("type", {"pinned", "translate", "rotate", "keyframes", "displace"}, "pinned");
   RigidMotion m;
   if (type == "pinned") {
     m = Pinned{};
+  } else if (type == "displace") {
+    Displacement d;
+    d.value = o.vec3("displacement");
+    d.amplitude = o.has("amplitude") ? parse_amplitude(o, "amplitude") : Amplitude{{}, true};
+    m = d;
   } else if (type == "translate") {
     m = Translation{o.vec3("per_frame")};
   } else if (type == "rotate") {
@@ -191,11 +196,32 @@ SolverSpec parse_solver(JsonObject o) {
   SolverSpec s;
   if (o.has("newton")) {
     JsonObject n = o.object("newton");
-    n.allow({"tolerance", "relative_tolerance", "max_iterations", "line_search_steps"});
-    s.newton.absolute_tolerance = n.positive("tolerance", s.newton.absolute_tolerance);
-    s.newton.relative_tolerance = n.number("relative_tolerance", 0.0);
-    if (s.newton.relative_tolerance < 0.0 || s.newton.relative_tolerance >= 1.0)
-      n.fail("relative_tolerance", "must be in [0, 1)");
+    n.allow({"convergence", "residual_tolerance", "step_tolerance", "tolerance", "relative_tolerance",
+             "max_iterations", "line_search_steps"});
+    const std::string test = n.choice("convergence", {"relative", "absolute"}, "relative");
+    if (test == "relative") {
+      // A force tolerance means nothing to the dimensionless test: refuse it rather than
+      // silently reinterpret an older scene's "tolerance" as a ratio.
+      for (const char* key : {"tolerance", "relative_tolerance"})
+        if (n.has(key))
+          n.fail(key, "is a setting of the absolute test: add \"convergence\": \"absolute\" (the default relative "
+                      "test takes residual_tolerance and step_tolerance)");
+      s.newton.test = ConvergenceTest::Relative;
+      s.newton.residual_tolerance = n.positive("residual_tolerance", s.newton.residual_tolerance);
+      if (s.newton.residual_tolerance >= 1.0) n.fail("residual_tolerance", "must be below 1 (a fraction of the force scale)");
+      if (s.newton.residual_tolerance < 1e-14)
+        n.fail("residual_tolerance", "must be at least 1e-14: double precision cannot resolve a smaller fraction");
+      s.newton.step_tolerance = n.positive("step_tolerance", s.newton.step_tolerance);
+      if (s.newton.step_tolerance >= 1.0) n.fail("step_tolerance", "must be below 1 (a fraction of the displacement)");
+    } else {
+      for (const char* key : {"residual_tolerance", "step_tolerance"})
+        if (n.has(key)) n.fail(key, "is a setting of the relative test; the absolute test takes tolerance (a force)");
+      s.newton.test = ConvergenceTest::Absolute;
+      s.newton.absolute_tolerance = n.positive("tolerance", s.newton.absolute_tolerance);
+      s.newton.relative_tolerance = n.number("relative_tolerance", 0.0);
+      if (s.newton.relative_tolerance < 0.0 || s.newton.relative_tolerance >= 1.0)
+        n.fail("relative_tolerance", "must be in [0, 1)");
+    }
     s.newton.max_iterations = n.integer("max_iterations", 1, s.newton.max_iterations);
     s.newton.max_line_search_steps = n.integer("line_search_steps", 1, s.newton.max_line_search_steps);
     n.finish();
@@ -236,31 +262,32 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   const nlohmann::json& material = root.raw("material");
   scene.material = material_spec_from_json(material, name + ": /material");
   scene.density = root.positive("density", scene.density);
-  if (root.has("boundary")) {
-    for (JsonObject b : root.objects("boundary")) {
-      b.allow({"name", "select", "motion"});
-      BoundarySpec spec;
-      spec.name = b.string("name", b.path());
-      spec.select = parse_selector(b.object("select"));
-      spec.motion = b.has("motion") ? parse_motion(b.object("motion")) : RigidMotion{Pinned{}};
-      b.finish();
-      scene.boundary.push_back(std::move(spec));
-    }
-  }
+  if (root.has("boundary"))
+    for (JsonObject b : root.objects("boundary")) scene.boundary.push_back(parse_boundary_condition(b, parse_selector));
   if (root.has("loads")) {
     JsonObject loads = root.object("loads");
     loads.allow({"gravity", "point", "traction"});
-    scene.gravity = loads.vec3("gravity", Eigen::Vector3d::Zero());
+    if (loads.has("gravity") && loads.raw("gravity").is_object()) {
+      JsonObject g = loads.object("gravity");
+      g.allow({"acceleration", "amplitude"});
+      scene.gravity = g.vec3("acceleration");
+      if (g.has("amplitude")) scene.gravity_amplitude = parse_amplitude(g, "amplitude");
+      g.finish();
+    } else {
+      scene.gravity = loads.vec3("gravity", Eigen::Vector3d::Zero());
+    }
     if (loads.has("point"))
       for (JsonObject p : loads.objects("point")) {
-        p.allow({"select", "force"});
-        scene.point_loads.push_back({parse_selector(p.object("select")), p.vec3("force")});
+        p.allow({"select", "force", "amplitude"});
+        scene.point_loads.push_back({parse_selector(p.object("select")), p.vec3("force"),
+                                     p.has("amplitude") ? parse_amplitude(p, "amplitude") : Amplitude{}});
         p.finish();
       }
     if (loads.has("traction"))
       for (JsonObject t : loads.objects("traction")) {
-        t.allow({"select", "traction"});
-        scene.tractions.push_back({parse_selector(t.object("select")), t.vec3("traction")});
+        t.allow({"select", "traction", "amplitude"});
+        scene.tractions.push_back({parse_selector(t.object("select")), t.vec3("traction"),
+                                   t.has("amplitude") ? parse_amplitude(t, "amplitude") : Amplitude{}});
         t.finish();
       }
     loads.finish();
@@ -280,6 +307,7 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   parse_dynamics_sections(root, scene);  // scene_dynamics.cpp
   parse_scene_rig(root, scene);
   root.finish();
+  resolve_ramps(scene);
   // Build the material once now so parameter problems surface at load time.
   try {
     build_material(scene.material);

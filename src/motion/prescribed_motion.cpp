@@ -13,6 +13,8 @@ RigidTransform transform_at(const RigidMotion& motion, double frame) {
   } else if (const auto* rot = std::get_if<Rotation>(&motion)) {
     T.R = Eigen::AngleAxisd(frame * rot->angle_per_frame, rot->axis.normalized()).toRotationMatrix();
     T.t = rot->center - T.R * rot->center;
+  } else if (const auto* d = std::get_if<Displacement>(&motion)) {
+    T.t = d->amplitude.at(frame) * d->value;
   } else if (const auto* kf = std::get_if<Keyframes>(&motion)) {
     const auto& k = kf->keys;
     if (frame <= k.front().frame) {
@@ -33,7 +35,10 @@ RigidTransform transform_at(const RigidMotion& motion, double frame) {
 }
 
 void validate_motion(const RigidMotion& motion, const std::string& context) {
-  if (const auto* tr = std::get_if<Translation>(&motion)) {
+  if (const auto* d = std::get_if<Displacement>(&motion)) {
+    if (!d->value.allFinite()) throw Error("displacement has a non-finite component", context);
+    validate_amplitude(d->amplitude, context + "/amplitude");
+  } else if (const auto* tr = std::get_if<Translation>(&motion)) {
     if (!tr->per_frame.allFinite()) throw Error("translation has a non-finite component", context);
   } else if (const auto* rot = std::get_if<Rotation>(&motion)) {
     if (!rot->center.allFinite() || !rot->axis.allFinite() || !std::isfinite(rot->angle_per_frame))
@@ -51,6 +56,19 @@ void validate_motion(const RigidMotion& motion, const std::string& context) {
   }
 }
 
+Mat3 vertex_frame(const Eigen::Vector3d& n) {
+  const Eigen::Vector3d u = n.normalized();
+  // The coordinate axis least aligned with n gives a well-conditioned first tangent.
+  Eigen::Index k = 0;
+  u.cwiseAbs().minCoeff(&k);
+  const Eigen::Vector3d t1 = u.cross(Eigen::Vector3d::Unit(k)).normalized();
+  Mat3 Q;
+  Q.col(0) = u;
+  Q.col(1) = t1;
+  Q.col(2) = u.cross(t1);
+  return Q;
+}
+
 void apply_kinematics(const std::vector<KinematicCondition>& conditions, const Eigen::MatrixX3d& rest,
                       double frame, Eigen::VectorXd& x, std::vector<char>& fixed) {
   for (const auto& c : conditions) {
@@ -62,8 +80,16 @@ void apply_kinematics(const std::vector<KinematicCondition>& conditions, const E
                                 "numbers; use a smaller motion or fewer frames",
                                 frame, v, p(0), p(1), p(2)),
                     c.source.empty() ? std::string("motion") : c.source);
-      x.segment<3>(3 * v) = p;
-      fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = 1;
+      if (c.direction) {
+        const Eigen::Vector3d& n = *c.direction;
+        x.segment<3>(3 * v) += n * n.dot(p - x.segment<3>(3 * v));
+        continue;  // its fixed flag is a DOF of the vertex's rotated frame: the caller's to set
+      }
+      for (int i = 0; i < 3; ++i) {
+        if (!c.components[i]) continue;
+        x(3 * v + i) = p(i);
+        fixed[3 * v + i] = 1;
+      }
     }
   }
 }

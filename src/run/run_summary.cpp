@@ -22,10 +22,12 @@ nlohmann::json frame_to_json(const FrameRecord& r) {
           {"substeps", r.substeps},
           {"residual", r.residual},
           {"residuals", r.residuals},
+          {"force_scale", r.force_scale},
           {"energy", r.energy},
           {"volume", r.volume},
           {"min_J", r.min_J},
           {"reactions", reactions},
+          {"external_force", vec_json(r.external_force)},
           {"kinetic_energy", r.kinetic_energy},
           {"potential_energy", r.potential_energy},
           {"contacts", r.contacts},
@@ -49,10 +51,15 @@ FrameRecord frame_from_json(const nlohmann::json& j) {
   r.substeps = j.at("substeps");
   r.residual = j.at("residual");
   if (j.contains("residuals")) r.residuals = j.at("residuals").get<std::vector<double>>();  // older checkpoints lack it
+  r.force_scale = j.value("force_scale", 0.0);
   r.energy = j.at("energy");
   r.volume = j.at("volume");
   r.min_J = j.at("min_J");
   for (const auto& f : j.at("reactions")) r.reactions.emplace_back(f.at(0), f.at(1), f.at(2));
+  if (j.contains("external_force")) {
+    const auto& f = j.at("external_force");
+    r.external_force = Eigen::Vector3d(f.at(0), f.at(1), f.at(2));
+  }
   r.kinetic_energy = j.at("kinetic_energy");
   r.potential_energy = j.at("potential_energy");
   r.contacts = j.at("contacts");
@@ -101,6 +108,8 @@ void write_summary(const std::filesystem::path& out, const Scene& scene, const M
                       {"rest_volume", summary.rest_volume},
                       {"external_force", vec_json(summary.external_force)},
                       {"boundary", boundary_names},
+                      {"convergence_test", integrator.convergence_test()},
+                      {"warnings", summary.warnings},
                       {"energy_limit", model.energy_limit ? nlohmann::json(model.energy_limit->max_energy) : nlohmann::json()},
                       {"frames_requested", frames_requested},
                       {"frames_completed", static_cast<int>(summary.frames.size())},

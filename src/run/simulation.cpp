@@ -56,12 +56,17 @@ void measure(const Model& model, const State& state, FrameRecord& record) {
   record.min_J = fields.J.minCoeff();
   // Support reactions: the unconstrained gradient of the total energy at a constrained vertex is
   // the force its boundary condition exerts there (body: -grad + support = 0).
+  // Only the prescribed components count: a roller's reaction is normal to it.
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
   for (const auto& form : model.problem->forms()) form->add_gradient(x, g);
   record.reactions.assign(model.kinematics.size(), Eigen::Vector3d::Zero());
-  for (size_t v = 0; v < model.boundary_owner.size(); ++v)
-    if (model.boundary_owner[v] >= 0) record.reactions[model.boundary_owner[v]] += g.segment<3>(3 * v);
-  record.potential_energy = model.elastic->value(x) - model.external_forces.dot(x);
+  for (size_t i = 0; i < model.dof_owner.size(); ++i)
+    if (const int c = model.dof_owner[i]; c >= 0) record.reactions[c](i % 3) += g(i);
+  for (const auto& d : model.vertex_directions)
+    record.reactions[d.condition] += d.direction * d.direction.dot(g.segment<3>(3 * d.vertex));
+  const Eigen::VectorXd& loads = model.load_form ? model.load_form->forces() : model.external_forces;
+  record.external_force = loads.reshaped(3, loads.size() / 3).rowwise().sum();
+  record.potential_energy = model.elastic->value(x) - loads.dot(x);
   if (model.contact) {
     const ContactStats s = model.contact->stats(x);
     record.potential_energy += s.penalty_energy;
@@ -99,6 +104,10 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   summary.elements = mesh.num_elements();
   for (Eigen::Index e = 0; e < disc.num_elements(); ++e) summary.rest_volume += disc.rest_volume(e);
   summary.external_force = model.external_forces.reshaped(3, model.external_forces.size() / 3).rowwise().sum();
+  summary.warnings = model.warnings;
+  if (options.strict && !model.warnings.empty()) throw Error(model.warnings.front() + " (a warning, an error with --strict)");
+  if (options.warning)
+    for (const auto& w : model.warnings) options.warning(w);
   State state = model.initial;
   int first_frame = 1;
 

@@ -15,7 +15,7 @@ cat >"$TMP/bar.json" <<'EOF'
     {"name": "right", "select": {"plane": {"point": [1, 0, 0], "normal": [1, 0, 0]}},
      "motion": {"type": "translate", "per_frame": [0.1, 0, 0]}}
   ],
-  "solver": {"newton": {"tolerance": 1e-6}},
+  "solver": {"newton": {"convergence": "absolute", "tolerance": 1e-6}},
   "frames": 4
 }
 EOF

@@ -68,7 +68,7 @@ scene_error "/material/family: unknown material 'rubber'" "{$MESH, \"material\":
 scene_error "/boundary/0/select: selection contains no vertex" "{$MESH, $MAT, \"boundary\": [{\"select\": {\"box\": {\"min\": [5,5,5], \"max\": [6,6,6]}}}]}"
 scene_error "/boundary/0/select: vertex index 27 out of range" "{$MESH, $MAT, \"boundary\": [{\"select\": {\"indices\": [27]}}]}"
 scene_error "/loads/traction/0/select: selects no boundary face" "{$MESH, $MAT, \"loads\": {\"traction\": [{\"select\": {\"indices\": [0]}, \"traction\": [1, 0, 0]}]}}"
-scene_error "/boundary/1/select: vertex 0 is also selected by /boundary/0" "{$MESH, $MAT, \"boundary\": [{\"select\": {\"indices\": [0]}}, {\"select\": {\"indices\": [0, 1]}, \"motion\": {\"type\": \"translate\", \"per_frame\": [0, 0, 1]}}]}"
+scene_error "/boundary/1/select: vertex 0 is also prescribed along (1, 0, 0) by /boundary/0 with a different motion" "{$MESH, $MAT, \"boundary\": [{\"select\": {\"indices\": [0]}}, {\"select\": {\"indices\": [0, 1]}, \"motion\": {\"type\": \"translate\", \"per_frame\": [0, 0, 1]}}]}"
 scene_error "/mesh/voxels/occupancy: no voxel is occupied" '{"mesh": {"voxels": {"min": [0,0,0], "max": [1,1,1], "dims": [1,1,2], "occupancy": [0,0]}}, '"$MAT}"
 
 # Missing and malformed mesh files; relative paths start at the scene's folder.

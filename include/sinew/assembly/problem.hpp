@@ -2,6 +2,9 @@
 // The total energy as a sum of forms over a DOF vector, with Dirichlet (fixed) DOFs.
 // Fixed DOFs keep whatever value x holds; the gradient is zero there and the Hessian's
 // fixed rows/columns are replaced by the identity, so the pattern never changes.
+// Vertices may have their DOFs expressed in a rotated frame (a roller on an inclined plane
+// fixes only the first axis of its frame): gradient() and hessian() are then in those local
+// coordinates, the fixed mask refers to them, and to_global() maps a step back.
 #include <memory>
 #include <vector>
 
@@ -23,6 +26,23 @@ class Problem {
   void set_fixed(const std::vector<char>& fixed_dofs);  // one flag per DOF
   const std::vector<char>& fixed() const { return fixed_; }
 
+  // Orthonormal frames (columns = local axes) of the vertices whose DOFs are rotated.
+  void set_vertex_frames(const std::vector<std::pair<int, Mat3>>& frames);
+  bool has_vertex_frames() const { return !frame_of_.empty(); }
+  // A vector in local DOFs (a Newton step) to global coordinates, in place.
+  void to_global(Eigen::VectorXd& d) const;
+  // Global coordinates to local DOFs (a gradient), in place.
+  void to_local(Eigen::VectorXd& g) const;
+
+  // Characteristic scales of the problem for dimensionless convergence tests: a length (the
+  // body's size) and a force (stiffness times size squared). Zero when unknown.
+  struct Scales {
+    double length = 0.0;
+    double force = 0.0;
+  };
+  void set_scales(const Scales& scales) { scales_ = scales; }
+  const Scales& scales() const { return scales_; }
+
   // The discretisation the DOFs belong to, when there is one (solvers may use it and its
   // lattice; solver/solver_context.hpp). It must have this problem's vertex count.
   void set_discretization(std::shared_ptr<const Discretization> discretization);
@@ -30,6 +50,10 @@ class Problem {
 
   double value(const Eigen::VectorXd& x) const;            // +inf where some form is invalid
   Eigen::VectorXd gradient(const Eigen::VectorXd& x) const;  // zero at fixed DOFs
+  // The same, also returning the largest force any single form exerts (the 2-norm of its
+  // unconstrained gradient): a force scale of the current state (loads, internal forces, the
+  // reactions they imply, inertia) for relative convergence tests.
+  Eigen::VectorXd gradient(const Eigen::VectorXd& x, double& force_scale) const;
   // The projected Hessian with Dirichlet rows/columns replaced by the identity, as an operator
   // (valid until the next call).
   const LinearOperator& hessian(const Eigen::VectorXd& x);
@@ -45,6 +69,10 @@ class Problem {
   Eigen::Index num_vertices_;
   std::vector<std::shared_ptr<Form>> forms_;
   std::vector<char> fixed_;
+  std::vector<Mat3> frames_;              // rotated vertex frames
+  std::vector<int> framed_vertices_;      // their vertices
+  std::vector<const Mat3*> frame_of_;     // per vertex, null if unrotated (empty if none)
+  Scales scales_;
   std::shared_ptr<const Discretization> discretization_;
   std::unique_ptr<BlockHessian> hessian_;
   std::unique_ptr<SparseOperator> hessian_operator_;

@@ -16,6 +16,7 @@ class EnergyLimitedIntegrator final : public Integrator {
   std::string name() const override { return "energy_limited"; }
   std::string description() const override { return "constrained dynamics (energy limits and constraint contact, paper 001)"; }
   bool dynamic() const override { return true; }
+  std::string convergence_test() const override;
   double frame_duration() const override { return stepper_->settings().time_step * steps_per_frame_; }
   // Counters: sqp_iterations, pgs_iterations, splitting_iterations, factorizations,
   // cg_iterations (summed over the steps); max_sqp_iterations_per_step, max_pgs_residual,

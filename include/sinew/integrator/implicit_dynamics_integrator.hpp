@@ -17,6 +17,7 @@ class ImplicitDynamicsIntegrator final : public Integrator {
   std::string name() const override { return to_string(scheme_); }
   std::string description() const override;
   bool dynamic() const override { return true; }
+  std::string convergence_test() const override;
   double frame_duration() const override { return stepper_->time_step() * substeps_; }
   StepStats advance_frame(State& state, int frame, const IterationProgress& progress) override;
 

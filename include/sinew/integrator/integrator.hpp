@@ -21,6 +21,7 @@ struct StepStats {
   int linear_iterations = 0;  // CG iterations (1 per direct solve)
   int substeps = 0;           // completed solves or time steps
   double residual = 0.0;      // the integrator's convergence measure at the end
+  double force_scale = 0.0;   // relative Newton test: the force the residual is measured against
   double energy = 0.0;        // the minimised energy (incremental potential), or the elastic energy
   double seconds = 0.0, assembly_seconds = 0.0, solve_seconds = 0.0;
   std::string failure;  // why it stopped without converging
@@ -61,6 +62,8 @@ class Integrator {
   // Human-readable, for messages ("constrained dynamics (energy limits, paper 001)").
   virtual std::string description() const = 0;
   virtual bool dynamic() const = 0;
+  // What "converged" means for this integrator's frames (summary.json "convergence_test").
+  virtual std::string convergence_test() const = 0;
   // Simulated seconds per frame (0 for quasistatic runs, whose time is the frame number).
   virtual double frame_duration() const { return 0.0; }
 

@@ -2,7 +2,9 @@
 // Quasistatic load stepping (paper 000 §6): each frame is a projected-Newton solve of the total
 // energy with the prescribed vertices at the frame's positions, started from the previous frame.
 // When Newton fails on the frame's whole motion, the motion is halved from the last solved
-// state, down to 1/2^kMaxMotionSplits of the frame, and lengthened again after each success.
+// state, down to 1/2^kMaxMotionSplits of the frame, and lengthened again after each success -
+// unless its tolerance is below round-off (NewtonReport::tolerance_unreachable), where splitting
+// cannot help.
 #include <memory>
 
 #include "sinew/assembly/problem.hpp"
@@ -26,6 +28,7 @@ class QuasistaticIntegrator final : public Integrator {
   std::string name() const override { return "quasistatic"; }
   std::string description() const override { return "quasistatic load stepping"; }
   bool dynamic() const override { return false; }
+  std::string convergence_test() const override { return describe_convergence_test(newton_); }
   StepStats advance_frame(State& state, int frame, const IterationProgress& progress) override;
 
  private:

@@ -34,6 +34,7 @@ class TimeStepper {
               Eigen::MatrixX3d rest, TimeStepSettings settings);
 
   double time_step() const { return inertia_->time_step(); }
+  const TimeStepSettings& settings() const { return settings_; }
 
   // Kinematic conditions beyond the rigid ones (e.g. rig bones): called after them with the
   // step's end frame, the rest positions, the trial positions and the fixed-DOF flags, and

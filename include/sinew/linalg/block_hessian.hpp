@@ -25,6 +25,10 @@ class BlockHessian {
   // Same, looking the slot up; throws if (a, b) is outside the pattern.
   void add_block(int a, int b, const Mat3& M);
 
+  // Expresses the DOFs of some vertices in rotated frames: block (a, b) becomes
+  // Q_a^T A_ab Q_b, with `frames[v]` = Q_v (null: the identity). The pattern is unchanged.
+  void change_basis(const std::vector<const Mat3*>& frames);
+
  private:
   Eigen::SparseMatrix<double> A_;
   std::vector<std::vector<int>> rows_;  // sorted row vertices of each column vertex

@@ -10,6 +10,7 @@
 #include "sinew/constraints/energy_limit.hpp"
 #include "sinew/element/discretization.hpp"
 #include "sinew/forms/elastic_form.hpp"
+#include "sinew/forms/external_force_form.hpp"
 #include "sinew/forms/inertia_form.hpp"
 #include "sinew/forms/penalty_contact_form.hpp"
 #include "sinew/integrator/integrator.hpp"
@@ -18,6 +19,19 @@
 #include "sinew/model/scene_rig.hpp"
 
 namespace sinew {
+
+// A vertex whose DOFs are in a rotated frame (Problem::set_vertex_frames) and the number of its
+// first local DOFs that are prescribed.
+struct VertexFrameDofs {
+  int vertex = 0;
+  int count = 0;
+};
+
+// A load's nodal forces at amplitude 1 and its amplitude over the frames.
+struct ScaledLoad {
+  Eigen::VectorXd forces;
+  Amplitude amplitude;
+};
 
 struct Model {
   std::shared_ptr<Discretization> disc;
@@ -31,9 +45,24 @@ struct Model {
   // energy only; its inertia, obstacles and limits are the stepper's).
   std::shared_ptr<Problem> problem;
   BoundarySurface surface;
-  Eigen::VectorXd external_forces;  // constant nodal forces: gravity, point loads, tractions
+  // External loads (gravity, point loads, tractions) as nodal forces, each with its amplitude;
+  // the integrator sets `load_form` to their sum at each (fractional) frame it solves.
+  std::vector<ScaledLoad> loads;
+  std::shared_ptr<ExternalForceForm> load_form;
+  Eigen::VectorXd external_forces;  // the loads at full amplitude (frame 1 of constant loads)
+  Eigen::VectorXd external_forces_at(double frame) const;
   std::vector<KinematicCondition> kinematics;  // the scene's boundary conditions, in order
-  std::vector<int> boundary_owner;  // per vertex: the first boundary entry selecting it, or -1
+  // Per global DOF of a vertex without a rotated frame: the boundary entry prescribing it, or -1.
+  std::vector<int> dof_owner;
+  // Vertices with a rotated frame (a direction that is not a coordinate axis): how many of their
+  // local DOFs are prescribed, and each prescribed direction with its boundary entry.
+  std::vector<VertexFrameDofs> vertex_frames;
+  struct VertexDirection {
+    int vertex, condition;
+    Eigen::Vector3d direction;
+  };
+  std::vector<VertexDirection> vertex_directions;
+  std::vector<std::string> warnings;  // suspicious but legal input (a selector taking every vertex, ...)
   SceneRig rig;
   std::shared_ptr<PenaltyContactForm> contact;  // obstacles as penalty contact (not energy-limited)
   Eigen::VectorXd lumped_masses;                // per vertex (dynamics)

@@ -3,6 +3,7 @@
 // loads, solver settings, frames and outputs. load_scene validates every field and names the
 // file, JSON path and reason of the first problem.
 #include <filesystem>
+#include <array>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
@@ -64,15 +65,20 @@ struct BoundarySpec {
   std::string name;
   VertexSelector select;
   RigidMotion motion;
+  std::array<bool, 3> components{true, true, true};  // prescribed coordinates ("components")
+  std::optional<Eigen::Vector3d> direction;          // unit; only the motion along it is prescribed
 };
 
+// Every load is multiplied by its amplitude at the frame (load control; default: constant 1).
 struct PointLoad {
   VertexSelector select;
   Eigen::Vector3d force;  // per selected vertex
+  Amplitude amplitude;
 };
 struct Traction {
   VertexSelector select;  // boundary faces whose vertices are all selected
   Eigen::Vector3d traction;  // force per unit rest area
+  Amplitude amplitude;
 };
 
 struct SolverSpec {
@@ -95,6 +101,7 @@ struct Scene {
   double density = 1000.0;
   std::vector<BoundarySpec> boundary;
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
+  Amplitude gravity_amplitude;
   std::vector<PointLoad> point_loads;
   std::vector<Traction> tractions;
   SolverSpec solver;

@@ -27,6 +27,7 @@ struct FrameRecord : StepStats {
   // Force each boundary condition (scene order) exerts on the body: the measured force of a
   // stretch test; at equilibrium their sum balances the external loads.
   std::vector<Eigen::Vector3d> reactions;
+  Eigen::Vector3d external_force = Eigen::Vector3d::Zero();  // sum of the loads at this frame's amplitudes
   // Energies of the frame's state (kinetic is zero in quasistatics) and obstacle contact.
   double kinetic_energy = 0.0, potential_energy = 0.0;
   int contacts = 0;               // penetrating (boundary vertex, obstacle) pairs (penalty contact)
@@ -51,12 +52,15 @@ struct RunOptions {
   std::optional<int> frames;      // overrides the scene's frame count
   bool resume = false;            // continue from out_dir's checkpoint
   std::function<void(const ProgressEvent&)> progress;
+  std::function<void(const std::string&)> warning;  // each of the model's warnings, before the first frame
+  bool strict = false;                              // warnings are errors
 };
 
 struct RunSummary {
   Eigen::Index vertices = 0, elements = 0;
   double rest_volume = 0.0;
-  Eigen::Vector3d external_force = Eigen::Vector3d::Zero();  // sum of gravity, point loads, tractions
+  Eigen::Vector3d external_force = Eigen::Vector3d::Zero();  // sum of gravity, point loads, tractions at amplitude 1
+  std::vector<std::string> warnings;  // the model's (Model::warnings), also printed by the CLI
   std::vector<FrameRecord> frames;  // including frames from before a resume; stops at the
                                     // first frame that did not converge
   Eigen::VectorXd x;                // final positions
