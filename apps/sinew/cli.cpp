@@ -47,6 +47,8 @@ std::pair<std::string, std::string> split_key_value(const std::string& text,
 
 void add_material_options(CLI::App& cmd, MaterialOptions& o) {
   cmd.add_option("--material", o.material, "Material family (see `sinew materials`)");
+  cmd.add_option("--material-json", o.material_json,
+                 "The whole material as JSON, as in a scene's /material (docs/materials.md)");
   cmd.add_option("--param", o.params, "Family parameter KEY=VALUE (repeatable)");
   cmd.add_option("--fn", o.fns, "Family function KEY=EXPR in x (repeatable)");
   o.E_opt = cmd.add_option("--E", o.E, "Normalise to this Young's modulus (with --nu)");
@@ -77,6 +79,19 @@ void check_positive(double value, const std::string& flag) {
 }  // namespace
 
 MaterialSpec material_spec_from_options(const MaterialOptions& o) {
+  if (!o.material_json.empty()) {
+    const bool others = !o.material.empty() || !o.params.empty() || !o.fns.empty() || !o.mix_lambda.empty() ||
+                        !o.mix_mu.empty() || !o.E.empty() || !o.nu.empty() || !o.alpha.empty() ||
+                        !o.alpha_lambda.empty() || !o.alpha_mu.empty();
+    if (others) throw Error("describes the whole material; give it without the other material flags", "--material-json");
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(o.material_json);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw Error(fmt::format("malformed JSON: {}", e.what()), "--material-json");
+    }
+    return material_spec_from_json(j, "--material-json");
+  }
   MaterialSpec spec;
   const bool E_given = o.E_opt && o.E_opt->count() > 0;
   const bool nu_given = o.nu_opt && o.nu_opt->count() > 0;

@@ -23,6 +23,9 @@ struct Command {
 Command add_materials_command(CLI::App& app);
 Command add_material_eval_command(CLI::App& material);
 Command add_material_curve_command(CLI::App& material);
+// `sinew viewer SCENE.json`: the browser viewer of a finished run (cmd_viewer.cpp).
+Command add_viewer_command(CLI::App& app);
+Command add_plot_command(CLI::App& app, int& exit_code);
 
 // A finite number, or sinew::Error("expected a finite number, got '...'", field).
 double parse_number(const std::string& text, const std::string& field);
@@ -33,9 +36,9 @@ std::pair<std::string, std::string> split_key_value(const std::string& text,
                                                     const std::string& field);
 
 // --material, --param, --fn, --E, --nu, --alpha, --mix-lambda, --mix-mu, --alpha-lambda,
-// --alpha-mu.
+// --alpha-mu, or --material-json (a scene's /material object, alone).
 struct MaterialOptions {
-  std::string material;
+  std::string material, material_json;
   std::vector<std::string> params, fns;
   std::string E, nu, alpha, mix_lambda, mix_mu, alpha_lambda, alpha_mu;
   CLI::Option *E_opt = nullptr, *nu_opt = nullptr, *alpha_opt = nullptr,

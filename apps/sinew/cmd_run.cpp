@@ -1,4 +1,5 @@
-// `sinew run SCENE.json [--out DIR] [--frames N] [--threads N] [--quiet] [--resume] [--strict]`.
+// `sinew run SCENE.json [--out DIR] [--frames N] [--threads N] [--progress auto|live|plain]
+// [--verbose] [--quiet] [--resume] [--strict] [--viewer]`.
 #include "cmd_run.hpp"
 
 #include <algorithm>
@@ -7,17 +8,18 @@
 #include <memory>
 #include <new>
 #include <tbb/global_control.h>
-#include <unistd.h>
 
+#include "progress.hpp"
 #include "sinew/core/error.hpp"
+#include "sinew/run/run_viewer.hpp"
 #include "sinew/run/simulation.hpp"
 
 namespace sinew::cli {
 namespace {
 
 struct Options {
-  std::string scene, out, frames, threads;
-  bool quiet = false, resume = false, strict = false;
+  std::string scene, out, frames, threads, progress = "auto";
+  bool quiet = false, verbose = false, resume = false, strict = false, viewer = false;
 };
 
 void run(const Options& o, int& exit_code) {
@@ -37,45 +39,35 @@ void run(const Options& o, int& exit_code) {
   }
   ro.resume = o.resume;
   ro.strict = o.strict;
+  if (o.viewer && !scene.output.vtu)
+    throw Error("the viewer is built from the run's VTU frames, and this scene has \"output\": {\"vtu\": false}", "--viewer");
+  // Energy-limited dynamics (paper 001) has no Newton iterations: it reports its SQP and PGS
+  // iteration counters instead.
+  const ProgressStyle style = o.quiet ? ProgressStyle::Quiet : progress_style(o.progress, stderr);
+  auto printer = std::make_shared<ProgressPrinter>(style, o.verbose && !o.quiet, scene.constraints.has_value());
+  if (style != ProgressStyle::Quiet) ro.progress = [printer](const ProgressEvent& e) { (*printer)(e); };
   // Warnings are printed even with --quiet: they are about the answer, not the progress.
-  ro.warning = [](const std::string& w) { fmt::print(stderr, "sinew: warning: {}\n", w); };
-  const bool tty = isatty(STDERR_FILENO);
-  if (!o.quiet) {
-    // Energy-limited dynamics (paper 001) has no Newton iterations: it reports its SQP and PGS
-    // iteration counters instead.
-    const bool sqp = scene.constraints.has_value();
-    ro.progress = [tty, sqp](const ProgressEvent& e) {
-      if (e.frame_done) {
-        const FrameRecord& r = *e.record;
-        if (tty) fmt::print(stderr, "\r\033[K");
-        const double outer = sqp ? r.counter("sqp_iterations") : r.newton_iterations;
-        const double inner = sqp ? r.counter("pgs_iterations") : r.linear_iterations;
-        fmt::print(stderr, "frame {}/{}: {} {}, {} {} iterations, residual {:.3e}, volume {:.6g}, {:.2f} s{}\n", e.frame,
-                   e.frames, outer, sqp ? "SQP" : "Newton", inner, sqp ? "PGS" : "linear", r.residual, r.volume,
-                   r.seconds, r.converged ? "" : "  NOT CONVERGED: " + r.failure);
-      } else if (tty) {
-        fmt::print(stderr, "\r\033[Kframe {}/{}  Newton {}  residual {:.3e}  elapsed {:.1f} s", e.frame, e.frames,
-                   e.newton_iteration, e.residual, e.elapsed);
-      } else if (e.newton_iteration > 0) {
-        fmt::print(stderr, "frame {}/{} Newton {} residual {:.3e} elapsed {:.1f} s\n", e.frame, e.frames,
-                   e.newton_iteration, e.residual, e.elapsed);
-      }
-    };
-  }
+  ro.warning = [printer](const std::string& w) {
+    printer->clear_line();
+    fmt::print(stderr, "sinew: warning: {}\n", w);
+  };
   const auto t0 = std::chrono::steady_clock::now();
   RunSummary s;
   try {
     s = run_scene(scene, ro);
   } catch (...) {
-    if (tty && !o.quiet) fmt::print(stderr, "\r\033[K");  // clear the live line for the error line
+    printer->clear_line();  // the error line starts on a clean line
     throw;
   }
+  // The browser viewer of every frame written (also of a run that stopped at an unconverged
+  // frame: its state is worth a look).
+  if (o.viewer && !s.frames.empty()) write_run_viewer(scene, ro.out_dir);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto bad = std::find_if(s.frames.begin(), s.frames.end(), [](const FrameRecord& f) { return !f.converged; });
   if (!o.quiet) {
     fmt::print("{} vertices, {} elements, {} frame(s) in {:.2f} s\n", s.vertices, s.elements, s.frames.size(), seconds);
-    fmt::print("results in {} ({}metrics in summary.json)\n", ro.out_dir.string(),
-               scene.output.vtu ? "open simulation.pvd in ParaView; " : "");
+    fmt::print("results in {} ({}{}metrics in summary.json)\n", ro.out_dir.string(),
+               scene.output.vtu ? "open simulation.pvd in ParaView; " : "", o.viewer ? "viewer.html in a browser; " : "");
   }
   if (bad != s.frames.end()) {
     fmt::print(stderr, "sinew: frame {} did not converge: {}; the run stopped there (see {})\n", bad->frame,
@@ -93,9 +85,15 @@ Command add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", opts->out, "output folder (default: out/<scene name>)");
   cmd->add_option("--frames", opts->frames, "number of frames (overrides the scene)");
   cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)");
-  cmd->add_flag("--quiet", opts->quiet, "no progress output");
+  cmd->add_option("--progress", opts->progress,
+                  "auto (default: live on a terminal, else plain), live (one line per frame redrawn in place), "
+                  "plain (one line per frame)")
+      ->check(CLI::IsMember({"auto", "live", "plain"}));
+  cmd->add_flag("--verbose", opts->verbose, "also one line per Newton iteration");
+  cmd->add_flag("--quiet", opts->quiet, "only errors and warnings (no progress, no results line)");
   cmd->add_flag("--resume", opts->resume, "continue from the output folder's checkpoint");
   cmd->add_flag("--strict", opts->strict, "treat warnings (e.g. a selector taking every vertex) as errors");
+  cmd->add_flag("--viewer", opts->viewer, "also write the browser viewer (viewer.html, viewer.glb; docs/viewer.md)");
   return {cmd, [opts, &exit_code] {
             try {
               run(*opts, exit_code);

@@ -33,10 +33,12 @@ int main(int argc, char** argv) {
   commands.push_back(sinew::cli::add_run_command(app, exit_code));
   commands.push_back(sinew::cli::add_check_command(app, exit_code));
   commands.push_back(sinew::cli::add_materials_command(app));
+  commands.push_back(sinew::cli::add_viewer_command(app));
   CLI::App* material = app.add_subcommand("material", "Evaluate one material: eval, curve");
   material->require_subcommand(1);
   commands.push_back(sinew::cli::add_material_eval_command(*material));
   commands.push_back(sinew::cli::add_material_curve_command(*material));
+  commands.push_back(sinew::cli::add_plot_command(app, exit_code));
 
   try {
     app.parse(argc, argv);

@@ -172,8 +172,71 @@ void write_vtu(const std::filesystem::path& path, const VolumeMesh& mesh, const 
   });
 }
 
+namespace {
+
+// Polygon cells: face f is corners [start[f], start[f + 1]) of `corners`.
+void write_polygon_cells_vtu(const std::filesystem::path& path, const Eigen::MatrixX3d& positions,
+                             const std::vector<int>& start, const std::vector<int>& corners) {
+  const Eigen::Index nv = positions.rows();
+  const auto nf = static_cast<Eigen::Index>(start.size()) - 1;
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    if (start[f + 1] - start[f] < 3) throw Error(fmt::format("face {} has fewer than 3 corners", f), path.string());
+    for (int c = start[f]; c < start[f + 1]; ++c)
+      if (corners[c] < 0 || corners[c] >= nv)
+        throw Error(fmt::format("face {} refers to vertex {} (there are {})", f, corners[c], nv), path.string());
+  }
+  write_file_atomically(path, [&](std::ostream& os) {
+    std::string scratch;
+    os << "<?xml version=\"1.0\"?>\n"
+       << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"" << kByteOrder
+       << "\" header_type=\"UInt32\">\n"
+       << "  <UnstructuredGrid>\n"
+       << fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", nv, nf)
+       << "      <Points>\n";
+    const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rows = positions;
+    write_array(os, scratch, "Points", "Float64", 3, rows.data(), static_cast<std::size_t>(rows.size()) * sizeof(double));
+    os << "      </Points>\n      <Cells>\n";
+    const std::vector<std::int64_t> connectivity(corners.begin(), corners.end());
+    write_array(os, scratch, "connectivity", "Int64", 1, connectivity.data(), connectivity.size() * sizeof(std::int64_t));
+    const std::vector<std::int64_t> offsets(start.begin() + 1, start.end());
+    write_array(os, scratch, "offsets", "Int64", 1, offsets.data(), offsets.size() * sizeof(std::int64_t));
+    std::vector<std::uint8_t> types(static_cast<std::size_t>(nf));
+    for (Eigen::Index f = 0; f < nf; ++f) {
+      const int n = start[f + 1] - start[f];
+      types[static_cast<std::size_t>(f)] = n == 3 ? 5 : n == 4 ? 9 : 7;  // VTK_TRIANGLE, VTK_QUAD, VTK_POLYGON
+    }
+    write_array(os, scratch, "types", "UInt8", 1, types.data(), types.size());
+    os << "      </Cells>\n"
+       << "    </Piece>\n"
+       << "  </UnstructuredGrid>\n"
+       << "</VTKFile>\n";
+  });
+}
+
+}  // namespace
+
+void write_surface_vtu(const std::filesystem::path& path, const PolygonSurface& surface,
+                       const Eigen::MatrixX3d& positions) {
+  surface.validate(path.string());
+  if (positions.rows() != surface.num_positions())
+    throw Error(fmt::format("{} positions given for a surface of {} vertices", positions.rows(), surface.num_positions()),
+                path.string());
+  std::vector<int> corners;
+  for (const auto& c : surface.corners) corners.push_back(c.position);
+  write_polygon_cells_vtu(path, positions, surface.face_start, corners);
+}
+
+void write_surface_vtu(const std::filesystem::path& path, const TriangleSurface& surface) {
+  std::vector<int> start(static_cast<std::size_t>(surface.faces.rows()) + 1), corners;
+  for (Eigen::Index t = 0; t < surface.faces.rows(); ++t) {
+    start[static_cast<std::size_t>(t + 1)] = static_cast<int>(3 * (t + 1));
+    for (int k = 0; k < 3; ++k) corners.push_back(surface.faces(t, k));
+  }
+  write_polygon_cells_vtu(path, surface.vertices, start, corners);
+}
+
 void write_pvd(const std::filesystem::path& path,
-               const std::vector<std::pair<double, std::string>>& time_and_relative_file) {
+               const std::vector<std::pair<double, std::string>>& time_and_relative_file, PvdTime meaning) {
   for (std::size_t i = 0; i < time_and_relative_file.size(); ++i) {
     const auto& [time, file] = time_and_relative_file[i];
     if (!std::isfinite(time)) {
@@ -183,8 +246,11 @@ void write_pvd(const std::filesystem::path& path,
   }
   write_file_atomically(path, [&](std::ostream& os) {
     os << "<?xml version=\"1.0\"?>\n"
-       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"" << kByteOrder << "\">\n"
-       << "  <Collection>\n";
+       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"" << kByteOrder << "\">\n";
+    if (meaning == PvdTime::Seconds) os << "  <!-- timestep: simulated time in seconds (dynamic run) -->\n";
+    if (meaning == PvdTime::Frames)
+      os << "  <!-- timestep: frame number (quasistatic run: frames are load steps, not time) -->\n";
+    os << "  <Collection>\n";
     for (const auto& [time, file] : time_and_relative_file) {
       // {} prints the shortest decimal that reads back to the same double.
       os << fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", time,

@@ -3,8 +3,6 @@
 #include <fmt/format.h>
 
 #include "sinew/core/error.hpp"
-#include "sinew/io/obj_writer.hpp"
-#include "sinew/io/ply_writer.hpp"
 #include "sinew/io/surface_reader.hpp"
 #include "sinew/mesh/inside_test.hpp"
 #include "sinew/mesh/lattice.hpp"
@@ -80,25 +78,6 @@ std::optional<VolumeMesh> build_surface_mesh(const MeshSpec& spec) {
   if (const auto* t = std::get_if<SurfaceTetrahedra>(&spec.source))
     return tetrahedralize_surface(read_triangle_surface(t->path), t->max_edge);
   return std::nullopt;
-}
-
-EmbeddedSurfaceOutput::EmbeddedSurfaceOutput(const Scene& scene, const VolumeMesh& mesh) {
-  if (!scene.mesh.embed) return;
-  try {
-    surface_ = read_triangle_surface(*scene.mesh.embed);
-    embedding_ = embed_points(mesh, surface_.vertices);
-  } catch (const Error& e) {
-    throw e.within(scene.file.string() + ": /mesh/embed");
-  }
-  active_ = true;
-}
-
-void EmbeddedSurfaceOutput::write(const std::filesystem::path& out, int frame, const Eigen::VectorXd& x) const {
-  if (!active_) return;
-  const Eigen::MatrixX3d deformed = embedding_.positions(x);
-  const Eigen::MatrixXi faces = surface_.faces;
-  write_obj(out / fmt::format("embedded_surface_{:04d}.obj", frame), deformed, faces);
-  write_ply(out / fmt::format("embedded_surface_{:04d}.ply", frame), deformed, faces);
 }
 
 }  // namespace sinew

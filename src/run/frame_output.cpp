@@ -1,6 +1,7 @@
 #include "sinew/run/frame_output.hpp"
 
 #include <fmt/format.h>
+#include <optional>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -55,7 +56,7 @@ void add_continuum_fields(const Model& model, const Eigen::VectorXd& x, VtuField
 }
 
 FrameOutput::FrameOutput(const Scene& scene, const Model& model, std::filesystem::path out)
-    : scene_(scene), model_(model), out_(std::move(out)), embedded_(scene, model.disc->mesh()) {}
+    : scene_(scene), model_(model), out_(std::move(out)), embedded_(scene, model.disc->mesh()), shapes_(scene, model.disc->mesh()) {}
 
 void FrameOutput::resume_after(int last_frame, const std::function<double(int)>& time_of) {
   pvd_.clear();
@@ -67,23 +68,27 @@ void FrameOutput::resume_after(int last_frame, const std::function<double(int)>&
 void FrameOutput::write(int frame, double time, const State& state) {
   if (out_.empty() || frame % scene_.output.every != 0) return;
   const VolumeMesh& mesh = model_.disc->mesh();
+  std::optional<ElementFields> fields;
+  if (scene_.output.vtu || embedded_.active()) fields = element_fields(model_, state.x);
   if (scene_.output.vtu) {
-    const ElementFields fields = element_fields(model_, state.x);
     VtuFields vf;
-    vf.cell_scalars = {{"J", fields.J}, {"energy_density", fields.energy_density}};
-    if (fields.stress_norm.size()) vf.cell_scalars.push_back({"stress_norm", fields.stress_norm});
-    vf.cell_scalars.push_back({"energy", fields.energy});
-    if (model_.energy_limit) vf.cell_scalars.push_back({"energy_ratio", fields.energy / model_.energy_limit->max_energy});
+    vf.cell_scalars = {{"J", fields->J}, {"energy_density", fields->energy_density}};
+    if (fields->stress_norm.size()) vf.cell_scalars.push_back({"stress_norm", fields->stress_norm});
+    vf.cell_scalars.push_back({"energy", fields->energy});
+    if (model_.energy_limit) vf.cell_scalars.push_back({"energy_ratio", fields->energy / model_.energy_limit->max_energy});
     if (model_.integrator->dynamic() && state.v.size() == state.x.size()) vf.point_vectors = {{"velocity", state.v}};
     add_continuum_fields(model_, state.x, vf);
     const std::string name = fmt::format("frame_{:04d}.vtu", frame);
     write_vtu(out_ / name, mesh, state.x, vf);
     std::erase_if(pvd_, [&](const auto& e) { return e.second == name; });
     pvd_.emplace_back(time, name);
-    write_pvd(out_ / "simulation.pvd", pvd_);
+    // ParaView's time: seconds in dynamics, the frame number in quasistatics (stated in the file).
+    write_pvd(out_ / "simulation.pvd", pvd_, model_.integrator->dynamic() ? PvdTime::Seconds : PvdTime::Frames);
   }
   if (scene_.output.obj) write_surface_obj(out_ / fmt::format("surface_{:04d}.obj", frame), mesh, model_.surface, state.x);
-  embedded_.write(out_, frame, state.x);
+  if (embedded_.active())
+    embedded_.write(out_, frame, state.x, *model_.disc, &fields->J, fields->stress_norm.size() ? &fields->stress_norm : nullptr);
+  shapes_.write(out_, frame);
 }
 
 }  // namespace sinew

@@ -24,6 +24,7 @@ nlohmann::json frame_to_json(const FrameRecord& r) {
           {"linear_iterations", r.linear_iterations},
           {"substeps", r.substeps},
           {"residual", r.residual},
+          {"residuals", r.residuals},
           {"force_scale", r.force_scale},
           {"energy", r.energy},
           {"volume", r.volume},
@@ -57,6 +58,10 @@ FrameRecord frame_from_json(const nlohmann::json& j, const std::string& path) {
   r.linear_iterations = count("linear_iterations");
   r.substeps = count("substeps");
   r.residual = real("residual");
+  if (j.contains("residuals")) {  // older checkpoints lack it
+    const nlohmann::json& list = array(at("residuals"), path + "/residuals");
+    for (size_t i = 0; i < list.size(); ++i) r.residuals.push_back(number(list[i], fmt::format("{}/residuals/{}", path, i)));
+  }
   r.force_scale = j.contains("force_scale") ? real("force_scale") : 0.0;
   r.energy = real("energy");
   r.volume = real("volume");

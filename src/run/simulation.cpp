@@ -26,7 +26,7 @@ bool RunSummary::all_converged() const {
 // A fresh run replaces the files an earlier run left in the folder (only the names Sinew
 // writes), so a shorter run does not leave stale frames behind.
 void remove_previous_outputs(const std::filesystem::path& out) {
-  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|simulation\.pvd|summary\.json|frames\.jsonl|checkpoint\.json|selections\.json))");
+  static const std::regex ours(R"((frame_\d{4,}\.vtu|surface_\d{4,}\.obj|embedded_surface_\d{4,}\.(obj|ply)|embedded_surface\.pc2|embedded_surface_rest\.obj|(obstacle|bone)_.+_\d{4,}\.(vtu|obj)|viewer\.(html|glb)|simulation\.pvd|summary\.json|frames\.jsonl|checkpoint\.json|selections\.json))");
   std::error_code ec;
   if (!std::filesystem::is_directory(out, ec)) return;
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
@@ -163,10 +163,13 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   try {
     for (int frame = first_frame; frame <= frames; ++frame) {
       if (options.progress) options.progress({frame, frames, 0, 0.0, elapsed(), false, nullptr});
+      std::vector<double> residuals;  // per Newton iteration, for summary.json and `sinew plot`
       auto progress = [&](int iteration, double residual) {
+        residuals.push_back(residual);
         if (options.progress) options.progress({frame, frames, iteration, residual, elapsed(), false, nullptr});
       };
-      const FrameRecord record = simulate_frame(model, state, frame, progress);
+      FrameRecord record = simulate_frame(model, state, frame, progress);
+      record.residuals = std::move(residuals);
       summary.frames.push_back(record);
       output.write(frame, record.time, state);
       if (writing) {

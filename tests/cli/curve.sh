@@ -33,4 +33,12 @@ grep -q "uniaxial curve" "$TMP/out" || fail "text header"
 expect_ok material curve --mix-lambda linear_corotational --mix-mu linear_corotational \
   --E 10 --nu 0.3 --alpha-mu 3 --steps 2 --csv
 [[ $(wc -l <"$TMP/out") -eq 4 ]] || fail "mix curve rows"
+# --material-json: a scene's /material object, the same curve as the flags give.
+expect_ok material curve --material-json '{"family": "stable_neo_hookean", "E": 1e5, "nu": 0.45}' --steps 4 --csv
+cp "$TMP/out" "$TMP/from_json.csv"
+expect_ok material curve --material stable_neo_hookean --E 1e5 --nu 0.45 --steps 4 --csv
+cmp -s "$TMP/out" "$TMP/from_json.csv" || fail "--material-json curve differs from the flags' curve"
+expect_error "--material-json: malformed JSON" material curve --material-json '{"family":'
+expect_error "--material-json/nu" material curve --material-json '{"family": "stable_neo_hookean", "E": 1e5, "nu": 0.7}'
+expect_error "--material-json: describes the whole material" material curve --material-json '{"family": "stvk"}' --E 1 --nu 0.3
 echo "curve: ok"

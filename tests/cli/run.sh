@@ -1,6 +1,7 @@
-# `sinew run`: output files, where-results line, progress (plain lines when stderr is not a
-# terminal, a live line when it is, nothing with --quiet), exit code 3 for a frame that did not
-# converge, --resume, stale files of an earlier run, and two runs into one folder.
+# `sinew run`: output files, where-results line, progress (one plain line per frame when stderr
+# is not a terminal or with --progress=plain, a live line per frame redrawn in place on a
+# terminal, per-iteration lines with --verbose, nothing with --quiet), exit code 3 for a frame
+# that did not converge, --resume, stale files of an earlier run, and two runs into one folder.
 source "$(dirname "$0")/common.bash"
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 SINEW=$(realpath "$SINEW")
@@ -20,15 +21,17 @@ cat >"$TMP/bar.json" <<'EOF'
 EOF
 
 expect_ok run --help
-for flag in --out --frames --threads --quiet --resume scene-format.md; do
+for flag in --out --frames --threads --progress --verbose --quiet --resume scene-format.md; do
   grep -q -- "$flag" "$TMP/out" || fail "run --help lacks $flag"
 done
 
 # Plain progress lines on a non-terminal stderr; results line on stdout.
 run run "$TMP/bar.json" --out "$TMP/a"
 [[ $RC -eq 0 ]] || fail "bar.json exited $RC: $(cat "$TMP/err")"
-grep -q "^frame 4/4: [0-9]* Newton, [0-9]* linear iterations, residual" "$TMP/err" || fail "no per-frame line: $(cat "$TMP/err")"
-grep -q "^frame 1/4 Newton 1 residual" "$TMP/err" || fail "no per-iteration line: $(cat "$TMP/err")"
+grep -q "^frame 4/4: [0-9]* Newton, [0-9]* linear iterations, residual .*, elapsed [0-9.]* s$" "$TMP/err" ||
+  fail "no per-frame line: $(cat "$TMP/err")"
+grep -q "^frame 3/4: .*, elapsed [0-9.]* s, ETA [0-9.]* s$" "$TMP/err" || fail "no ETA on frame 3: $(cat "$TMP/err")"
+[[ $(wc -l <"$TMP/err") -eq 4 ]] || fail "expected one progress line per frame: $(cat "$TMP/err")"
 if grep -q $'\r\|\033' "$TMP/err"; then fail "terminal control characters in non-terminal output"; fi
 grep -q "^results in $TMP/a " "$TMP/out" || fail "no results line: $(cat "$TMP/out")"
 grep -q "^81 vertices, 32 elements, 4 frame(s)" "$TMP/out" || fail "no size line: $(cat "$TMP/out")"
@@ -58,16 +61,32 @@ pulls = [f["reactions"][1][0] for f in d["frames"]]
 assert pulls == sorted(pulls), pulls
 EOF
 
+# --verbose adds one line per Newton iteration.
+run run "$TMP/bar.json" --out "$TMP/v" --frames 2 --verbose
+[[ $RC -eq 0 ]] || fail "--verbose exited $RC: $(cat "$TMP/err")"
+grep -q "^frame 1/2 Newton 1 residual [0-9.e+-]* elapsed [0-9.]* s$" "$TMP/err" || fail "no per-iteration line: $(cat "$TMP/err")"
+grep -q "^frame 2/2: " "$TMP/err" || fail "--verbose lost the frame line: $(cat "$TMP/err")"
+expect_error "--progress" run "$TMP/bar.json" --out "$TMP/v" --progress fancy
+
 # --quiet: nothing on stdout or stderr, same files.
 expect_ok run "$TMP/bar.json" --out "$TMP/q" --quiet
 [[ ! -s $TMP/out ]] || fail "--quiet wrote to stdout: $(cat "$TMP/out")"
 cmp -s "$TMP/a/frame_0004.vtu" "$TMP/q/frame_0004.vtu" || fail "--quiet changed the result"
 
-# A terminal gets one live line, redrawn in place.
+# A terminal gets one live line per frame, redrawn in place (Newton iteration, residual,
+# elapsed, ETA from the second frame on) and left as the frame's line; --progress=plain there
+# gives the plain lines.
 if command -v script >/dev/null; then
-  script -qec "'$SINEW' run '$TMP/bar.json' --out '$TMP/tty' --frames 2" /dev/null >"$TMP/tty.txt" </dev/null
-  grep -q $'\r\033\[Kframe 1/2  Newton 1  residual' "$TMP/tty.txt" || fail "no live progress on a terminal: $(cat -v "$TMP/tty.txt")"
+  script -qec "'$SINEW' run '$TMP/bar.json' --out '$TMP/tty' --frames 3" /dev/null >"$TMP/tty.txt" </dev/null
+  grep -q $'\r\033\[Kframe 1/3  Newton 1  residual [0-9.e+-]*  elapsed [0-9.]* s' "$TMP/tty.txt" ||
+    fail "no live progress on a terminal: $(cat -v "$TMP/tty.txt")"
+  grep -q $'\r\033\[Kframe 2/3  Newton 1  residual [0-9.e+-]*  elapsed [0-9.]* s  ETA [0-9.]* s' "$TMP/tty.txt" ||
+    fail "no ETA in the live line: $(cat -v "$TMP/tty.txt")"
+  grep -q $'\r\033\[Kframe 3/3: [0-9]* Newton' "$TMP/tty.txt" || fail "no frame line on a terminal: $(cat -v "$TMP/tty.txt")"
   grep -q "results in" "$TMP/tty.txt" || fail "no results line on a terminal"
+  script -qec "'$SINEW' run '$TMP/bar.json' --out '$TMP/tty' --frames 2 --progress=plain" /dev/null >"$TMP/tty.txt" </dev/null
+  if grep -q $'\033' "$TMP/tty.txt"; then fail "--progress=plain drew on the terminal: $(cat -v "$TMP/tty.txt")"; fi
+  grep -q "^frame 2/2: " "$TMP/tty.txt" || fail "--progress=plain on a terminal: $(cat -v "$TMP/tty.txt")"
 fi
 
 # --resume: 2 of 4 frames, then resume to 4, equals the uninterrupted run bit for bit.

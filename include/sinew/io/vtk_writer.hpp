@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "sinew/mesh/polygon_surface.hpp"
+#include "sinew/mesh/triangle_surface.hpp"
 #include "sinew/mesh/volume_mesh.hpp"
 
 namespace sinew {
@@ -42,10 +44,25 @@ struct VtuFields {
 void write_vtu(const std::filesystem::path& path, const VolumeMesh& mesh, const Eigen::VectorXd& x,
                const VtuFields& fields = {});
 
+// A surface (obstacle, bone, render surface) as a VTK XML UnstructuredGrid of polygon cells
+// (triangle 5, quad 9, polygon 7), points Float64, no data arrays. Throws sinew::Error naming
+// the file on an index out of range or a size mismatch.
+void write_surface_vtu(const std::filesystem::path& path, const PolygonSurface& surface,
+                       const Eigen::MatrixX3d& positions);
+void write_surface_vtu(const std::filesystem::path& path, const TriangleSurface& surface);
+
+// What the DataSet timesteps of a .pvd mean; written into the file as a comment.
+enum class PvdTime {
+  Unstated,
+  Seconds,  // simulated time (dynamic runs)
+  Frames,   // frame numbers (quasistatic runs: frames are load steps, not time)
+};
+
 // Writes a ParaView collection: one DataSet per (time, file), the file relative to the
 // .pvd's directory (as ParaView resolves it). Times must be finite.
 void write_pvd(const std::filesystem::path& path,
-               const std::vector<std::pair<double, std::string>>& time_and_relative_file);
+               const std::vector<std::pair<double, std::string>>& time_and_relative_file,
+               PvdTime meaning = PvdTime::Unstated);
 
 // Characters &, <, >, " and ' as XML entities (for names and attribute values).
 std::string xml_escape(const std::string& text);

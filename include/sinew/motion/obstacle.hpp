@@ -10,6 +10,7 @@
 
 #include "sinew/core/types.hpp"
 #include "sinew/motion/prescribed_motion.hpp"
+#include "sinew/mesh/triangle_surface.hpp"
 
 namespace sinew {
 
@@ -28,6 +29,10 @@ class ObstacleShape {
   virtual ~ObstacleShape() = default;
   virtual std::string type() const = 0;
   virtual SurfaceQuery query(const Eigen::Vector3d& p) const = 0;  // in the rest pose
+  // Its surface in the rest pose as closed outward triangles, for output and display
+  // (motion/obstacle_surface.cpp). `focus` is the body's rest bounds: the unbounded plane is
+  // shown as a square centred under it, three body sizes wide; bounded shapes ignore it.
+  virtual TriangleSurface surface_mesh(const Eigen::AlignedBox3d& focus) const = 0;
 };
 
 // Half-space below the plane through `point` with outward `normal` (the ground: normal up).
@@ -36,6 +41,9 @@ class PlaneObstacle final : public ObstacleShape {
   PlaneObstacle(const Eigen::Vector3d& point, const Eigen::Vector3d& normal);
   std::string type() const override { return "plane"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  const Eigen::Vector3d& point() const { return point_; }
+  const Eigen::Vector3d& normal() const { return normal_; }
+  TriangleSurface surface_mesh(const Eigen::AlignedBox3d& focus) const override;
 
  private:
   Eigen::Vector3d point_, normal_;
@@ -46,6 +54,9 @@ class SphereObstacle final : public ObstacleShape {
   SphereObstacle(const Eigen::Vector3d& center, double radius);
   std::string type() const override { return "sphere"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  const Eigen::Vector3d& center() const { return center_; }
+  double radius() const { return radius_; }
+  TriangleSurface surface_mesh(const Eigen::AlignedBox3d& focus) const override;
 
  private:
   Eigen::Vector3d center_;
@@ -58,6 +69,10 @@ class CapsuleObstacle final : public ObstacleShape {
   CapsuleObstacle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius);
   std::string type() const override { return "capsule"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  const Eigen::Vector3d& a() const { return a_; }
+  const Eigen::Vector3d& b() const { return b_; }
+  double radius() const { return radius_; }
+  TriangleSurface surface_mesh(const Eigen::AlignedBox3d& focus) const override;
 
  private:
   Eigen::Vector3d a_, b_;
@@ -70,6 +85,11 @@ class CylinderObstacle final : public ObstacleShape {
   CylinderObstacle(const Eigen::Vector3d& center, const Eigen::Vector3d& axis, double radius, double length);
   std::string type() const override { return "cylinder"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  const Eigen::Vector3d& center() const { return center_; }
+  const Eigen::Vector3d& axis() const { return axis_; }  // unit
+  double radius() const { return radius_; }
+  double length() const { return 2.0 * half_length_; }
+  TriangleSurface surface_mesh(const Eigen::AlignedBox3d& focus) const override;
 
  private:
   Eigen::Vector3d center_, axis_;
@@ -82,6 +102,9 @@ class BoxObstacle final : public ObstacleShape {
   BoxObstacle(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
   std::string type() const override { return "box"; }
   SurfaceQuery query(const Eigen::Vector3d& p) const override;
+  Eigen::Vector3d lo() const { return center_ - half_; }
+  Eigen::Vector3d hi() const { return center_ + half_; }
+  TriangleSurface surface_mesh(const Eigen::AlignedBox3d& focus) const override;
 
  private:
   Eigen::Vector3d center_, half_;
@@ -98,6 +121,8 @@ class Obstacle {
 
   // Throws a sinew::Error naming the obstacle and frame when the path has left the finite numbers.
   RigidTransform pose(double frame) const;
+  // The shape's surface moved to `frame` (see ObstacleShape::surface_mesh).
+  TriangleSurface surface_at(double frame, const Eigen::AlignedBox3d& focus) const;
   // The query of a world-space point against the obstacle at `frame`, in world space.
   SurfaceQuery query(const Eigen::Vector3d& p, double frame) const;
   // How far the obstacle material point at p (world, at frame0) moves by frame1.

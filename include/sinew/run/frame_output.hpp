@@ -1,7 +1,8 @@
 #pragma once
 // The per-frame output files of a run, whatever its integrator: the volume mesh with its fields
-// (frame_NNNN.vtu, listed in simulation.pvd), the boundary surface (surface_NNNN.obj) and the
-// embedded surface (embedded_surface_NNNN.obj|ply), every `output.every` frames.
+// (frame_NNNN.vtu, listed in simulation.pvd), the boundary surface (surface_NNNN.obj), the
+// embedded render surface (embedded_surface_*, run/embedded_surface_output.hpp) and the
+// obstacles and bones (run/shape_output.hpp), every `output.every` frames.
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -10,7 +11,8 @@
 
 #include "sinew/io/vtk_writer.hpp"
 #include "sinew/model/model.hpp"
-#include "sinew/model/scene_surface.hpp"
+#include "sinew/run/embedded_surface_output.hpp"
+#include "sinew/run/shape_output.hpp"
 
 namespace sinew {
 
@@ -30,6 +32,7 @@ class FrameOutput {
   const Model& model_;
   std::filesystem::path out_;
   EmbeddedSurfaceOutput embedded_;
+  ShapeOutput shapes_;
   std::vector<std::pair<double, std::string>> pvd_;
 };
 

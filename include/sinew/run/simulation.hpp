@@ -25,6 +25,9 @@ struct FrameRecord : StepStats {
   double time = 0.0;  // simulated seconds at the frame's end (quasistatic runs: the frame number)
   double volume = 0.0;
   double min_J = 0.0;
+  // The residual after each Newton iteration of the frame (every time step's, in order; for
+  // energy-limited dynamics the constraint error after each step), for convergence plots.
+  std::vector<double> residuals;
   // Force each boundary condition (scene order) exerts on the body: the measured force of a
   // stretch test; at equilibrium their sum balances the external loads.
   std::vector<Eigen::Vector3d> reactions;
