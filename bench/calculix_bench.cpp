@@ -149,9 +149,9 @@ Scene block_scene(int N, const Settings& s) {
   scene.mesh.cells = Eigen::Vector3i(N, N, 2 * N);
   scene.material.family = "neo_hookean_decoupled";
   scene.material.parameters.values = {{"C10", C10(s)}, {"D1", D1(s)}};
-  scene.boundary.push_back({"bottom", PlaneSelector{Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ()}, Pinned{}});
+  scene.boundary.push_back({"bottom", PlaneSelector{Eigen::Vector3d::Zero(), -Eigen::Vector3d::UnitZ()}, Pinned{}, {true, true, true}, {}});
   scene.boundary.push_back({"top", PlaneSelector{Eigen::Vector3d(0.0, 0.0, 2.0), Eigen::Vector3d::UnitZ()},
-                            Translation{Eigen::Vector3d(0.0, 0.0, 2.0 * (s.stretch - 1.0) / s.increments)}});
+                            Translation{Eigen::Vector3d(0.0, 0.0, 2.0 * (s.stretch - 1.0) / s.increments)}, {true, true, true}, {}});
   scene.solver.newton.absolute_tolerance = s.newton_tolerance;
   scene.solver.newton.linear_tolerance = 1e-8;
   scene.solver.linear.kind = s.linear;
@@ -177,7 +177,7 @@ Run run_sinew(int N, const Settings& s) {
   // The reaction on the moved face: the elastic force its prescribed vertices feel.
   Eigen::VectorXd g = Eigen::VectorXd::Zero(state.x.size());
   m.hyperelastic->add_gradient(state.x, g);
-  for (int v : m.kinematics.at(1).vertices) r.reaction += g(3 * v + 2);
+  for (int v : m.kinematics->at(1).vertices) r.reaction += g(3 * v + 2);
   return r;
 }
 

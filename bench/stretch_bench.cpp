@@ -6,6 +6,7 @@
 //   stretch_bench [--sizes 16,33,67] [--models snh,filtered,fixed,corot] [--frames 12]
 //                 [--run-frames 67:1,corot@33:5] [--newton-cap 100] [--cg-cap 10000]
 //                 [--caps corot:20:1000] [--threads N] [--preconditioners block_jacobi,multigrid]
+//                 [--newton default,paper]
 //
 // Each (size, model) runs in its own child process (this program re-executed with --child), so
 // the peak resident memory reported is that run's alone. --run-frames D:K (or MODEL@D:K) runs
@@ -45,6 +46,9 @@ struct Settings {
   double linear_tolerance = 1e-3;
   int threads = 0;
   std::string preconditioner = "block_jacobi";
+  // "default": Sinew's Newton (adaptive projection, predictor); "paper": paper 000's projected
+  // Newton (clamped Hessian every iteration, each frame started from the previous one).
+  std::string newton = "default";
 };
 
 StretchConfig config_for(int diameter, const std::string& family, const Settings& s) {
@@ -55,6 +59,12 @@ StretchConfig config_for(int diameter, const std::string& family, const Settings
   c.solver = paper_solver(s.linear_tolerance, s.newton_cap);
   c.solver.linear.max_iterations = s.cg_cap;
   c.solver.linear.preconditioner = s.preconditioner;
+  if (s.newton == "paper") {
+    c.solver.newton.exact_tail = false;
+    c.solver.predictor = false;
+  } else if (s.newton != "default") {
+    throw Error("unknown Newton variant '" + s.newton + "' (default, paper)", "--newton");
+  }
   return c;
 }
 
@@ -92,6 +102,13 @@ int run_child(int diameter, const std::string& family, int run_frames, const Set
                               {"peak_rss_mb", peak_rss_mb()}};
   std::printf("%s\n", out.dump().c_str());
   return 0;
+}
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> v;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) v.push_back(item);
+  return v;
 }
 
 std::vector<int> parse_ints(const std::string& text) {
@@ -158,6 +175,10 @@ int main(int argc, char** argv) {
   app.add_option("--threads", s.threads, "worker threads (default: all cores)");
   app.add_option("--preconditioners", preconditioners, "PCG preconditioners to compare (comma-separated)");
   app.add_option("--preconditioner", s.preconditioner)->group("");
+  std::string newton_variants = "default";
+  app.add_option("--newton", newton_variants,
+                 "Newton variants to compare: default (adaptive projection, predictor), paper (clamp, no predictor)");
+  app.add_option("--newton-variant", s.newton)->group("");
   app.add_flag("--child", child)->group("");
   app.add_option("--child-diameter", child_diameter)->group("");
   app.add_option("--child-family", child_family)->group("");
@@ -207,7 +228,8 @@ int main(int argc, char** argv) {
     }
     for (int d : parse_ints(sizes)) {
       for (const auto& key : model_keys)
-      for (const auto& pc : preconditioner_names) {
+      for (const auto& pc : preconditioner_names)
+      for (const auto& variant : split_list(newton_variants)) {
         int k = s.frames;
         if (run_frames.count({"", d})) k = run_frames[{"", d}];
         if (run_frames.count({key, d})) k = run_frames[{key, d}];
@@ -215,8 +237,9 @@ int main(int argc, char** argv) {
         const auto [newton_cap, cg_cap] = caps.count(key) ? caps[key] : std::make_pair(s.newton_cap, s.cg_cap);
         const std::string cmd = fmt::format(
             "'{}' --child --child-diameter {} --child-family {} --child-run-frames {} --frames {} "
-            "--newton-cap {} --cg-cap {} --linear-tolerance {} --threads {} --preconditioner {}",
-            self.string(), d, kModels.at(key), k, s.frames, newton_cap, cg_cap, s.linear_tolerance, s.threads, pc);
+            "--newton-cap {} --cg-cap {} --linear-tolerance {} --threads {} --preconditioner {} --newton-variant {}",
+            self.string(), d, kModels.at(key), k, s.frames, newton_cap, cg_cap, s.linear_tolerance, s.threads, pc,
+            variant);
         std::fprintf(stderr, "running D=%d %s, %s (%d of %d frames)\n", d, kModels.at(key).c_str(), pc.c_str(), k,
                      s.frames);
         FILE* pipe = popen(cmd.c_str(), "r");
@@ -228,7 +251,7 @@ int main(int argc, char** argv) {
         rows.push_back(row_from(nlohmann::json::parse(text), key, full_stretch));
         rows.back().newton_cap = newton_cap;
         rows.back().cg_cap = cg_cap;
-        rows.back().preconditioner = pc;
+        rows.back().preconditioner = variant == "default" ? pc : pc + ", " + variant + " Newton";
       }
     }
 

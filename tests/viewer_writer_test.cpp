@@ -243,7 +243,8 @@ Scene small_scene(const TempDir& dir) {
                    "motion": {"type": "translate", "per_frame": [0, 0, -0.1]}}],
     "frames": 2
   })");
-  return parse_scene(j, dir / "scene.json");
+  // On disk: a run's checkpoint fingerprints the scene file.
+  return load_scene(dir.write("scene.json", j.dump()));
 }
 
 TEST(RunViewer, FieldsAreJAndVonMisesOfTheDeformation) {

@@ -30,9 +30,14 @@ Eigen::Vector4f role_color(ViewerRole role) {
 }
 
 // Text placed inside <script> must not close the element early.
-std::string script_safe(std::string text) {
-  for (std::size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) text.insert(at + 1, "\\");
-  return text;
+std::string script_safe(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    out += text[i];
+    if (text[i] == '<' && i + 1 < text.size() && text[i + 1] == '/') out += '\\';  // "<\/"
+  }
+  return out;
 }
 
 std::string read_text(const std::filesystem::path& path) {

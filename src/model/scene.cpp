@@ -276,6 +276,7 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
               "constraints", "dynamics", "obstacles", "rig", "self_contact"});
   Scene scene;
   scene.file = file;
+  scene.text = json.dump();
   scene.description = root.string("description", "");
   const std::filesystem::path folder = file.parent_path();
   scene.mesh = parse_mesh(root.object("mesh"), folder);

@@ -18,23 +18,34 @@ using namespace json_checks;
 
 constexpr int kFormat = 3;
 
+// 64-bit FNV-1a over n more bytes.
+std::uint64_t fnv1a(std::uint64_t hash, const char* bytes, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    hash ^= static_cast<unsigned char>(bytes[i]);
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
+
 // Size and 64-bit FNV-1a hash of a file's bytes, read in blocks (a large mesh is not held twice).
 std::string fingerprint_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("cannot read the file to fingerprint it for the checkpoint", path.string());
-  std::uint64_t hash = 14695981039346656037ull, size = 0;
+  std::uint64_t hash = kFnvOffset, size = 0;
   std::vector<char> block(1 << 16);
   while (in) {
     in.read(block.data(), static_cast<std::streamsize>(block.size()));
     const auto n = static_cast<std::size_t>(in.gcount());
-    for (std::size_t i = 0; i < n; ++i) {
-      hash ^= static_cast<unsigned char>(block[i]);
-      hash *= 1099511628211ull;
-    }
+    hash = fnv1a(hash, block.data(), n);
     size += n;
   }
   if (in.bad()) throw Error("read failed while fingerprinting it for the checkpoint", path.string());
   return fmt::format("{}:{:016x}", size, hash);
+}
+
+std::string fingerprint_text(const std::string& text) {
+  return fmt::format("{}:{:016x}", text.size(), fnv1a(kFnvOffset, text.data(), text.size()));
 }
 
 Eigen::VectorXd read_vector(const nlohmann::json& j, const char* key, Eigen::Index dofs) {
@@ -57,7 +68,9 @@ Eigen::VectorXd read_vector(const nlohmann::json& j, const char* key, Eigen::Ind
 
 RunFingerprint fingerprint_run(const Scene& scene) {
   RunFingerprint f;
-  f.scene = fingerprint_file(scene.file);
+  // A scene built in memory (the Python module's dicts, tests) has no file: its JSON is the input.
+  std::error_code ec;
+  f.scene = fs::exists(scene.file, ec) ? fingerprint_file(scene.file) : fingerprint_text(scene.text);
   const fs::path folder = scene.file.parent_path();
   for (const fs::path& path : scene_input_files(scene)) {
     // Named relative to the scene's folder, so a run resumed from another working directory

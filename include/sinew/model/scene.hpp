@@ -103,6 +103,7 @@ struct OutputSpec {
 
 struct Scene {
   std::filesystem::path file;  // where it was loaded from
+  std::string text;            // the parsed JSON, dumped: what identifies a scene built in memory
   std::string description;     // free text, echoed to summary.json
   MeshSpec mesh;
   MaterialSpec material;
