@@ -276,7 +276,6 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
               "constraints", "dynamics", "obstacles", "rig", "self_contact"});
   Scene scene;
   scene.file = file;
-  scene.text = json.dump();
   scene.description = root.string("description", "");
   const std::filesystem::path folder = file.parent_path();
   scene.mesh = parse_mesh(root.object("mesh"), folder);
@@ -352,6 +351,9 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   } catch (const Error& e) {
     throw e.within(name + ": /material");  // its context names the family and parameter
   }
+  // Only now: a value that passed every check has the scene's bounded depth (dumping a hostile,
+  // deeply nested one would recurse past the stack).
+  scene.text = json.dump();
   return scene;
 }
 
