@@ -18,6 +18,16 @@ namespace {
 constexpr const char* kByteOrder =
     std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
 
+// The XML prologue up to an UnstructuredGrid's <Piece>: version 0.1 with a UInt32 header_type is
+// what VTK itself writes for 32-bit headers.
+void write_piece_header(std::ostream& os, Eigen::Index points, Eigen::Index cells) {
+  os << "<?xml version=\"1.0\"?>\n"
+     << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"" << kByteOrder
+     << "\" header_type=\"UInt32\">\n"
+     << "  <UnstructuredGrid>\n"
+     << fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", points, cells);
+}
+
 // VTK cell type ids (vtkCellType.h).
 constexpr std::uint8_t kTetraType = 10;
 constexpr std::uint8_t kHexahedronType = 12;
@@ -118,12 +128,7 @@ void write_vtu(const std::filesystem::path& path, const VolumeMesh& mesh, const 
 
   write_file_atomically(path, [&](std::ostream& os) {
     std::string scratch;
-    // version 0.1 with a UInt32 header_type is what VTK itself writes for 32-bit headers.
-    os << "<?xml version=\"1.0\"?>\n"
-       << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"" << kByteOrder
-       << "\" header_type=\"UInt32\">\n"
-       << "  <UnstructuredGrid>\n"
-       << fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", nv, ne);
+    write_piece_header(os, nv, ne);
 
     os << "      <PointData Vectors=\"displacement\">\n";
     const Eigen::VectorXd displacement = x - mesh.rest_positions();
@@ -187,12 +192,8 @@ void write_polygon_cells_vtu(const std::filesystem::path& path, const Eigen::Mat
   }
   write_file_atomically(path, [&](std::ostream& os) {
     std::string scratch;
-    os << "<?xml version=\"1.0\"?>\n"
-       << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"" << kByteOrder
-       << "\" header_type=\"UInt32\">\n"
-       << "  <UnstructuredGrid>\n"
-       << fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", nv, nf)
-       << "      <Points>\n";
+    write_piece_header(os, nv, nf);
+    os << "      <Points>\n";
     const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rows = positions;
     write_array(os, scratch, "Points", "Float64", 3, rows.data(), static_cast<std::size_t>(rows.size()) * sizeof(double));
     os << "      </Points>\n      <Cells>\n";
