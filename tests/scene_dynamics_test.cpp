@@ -82,6 +82,8 @@ INSTANTIATE_TEST_SUITE_P(
     Scene, SceneDynamicsValidation,
     ::testing::Values(
         BadDynamics{R"({"dynamics": {}})", "/dynamics/time_step: required field is missing"},
+        BadDynamics{R"({"dynamics": {"time_step": 0.1}, "solver": {"predictor": "none"}})",
+                    "/solver/predictor: applies to quasistatic runs only"},
         BadDynamics{R"({"dynamics": {"time_step": 0}})", "/dynamics/time_step: must be a positive"},
         BadDynamics{R"({"dynamics": {"time_step": -1}})", "/dynamics/time_step: must be a positive"},
         BadDynamics{R"({"dynamics": {"time_step": "0.1"}})", "/dynamics/time_step: must be a"},

@@ -342,6 +342,9 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
     o.finish();
   }
   parse_dynamics_sections(root, scene);  // scene_dynamics.cpp
+  if (scene.dynamics && json.contains("solver") && json.at("solver").contains("predictor"))  // an object: parse_solver checked
+    throw Error("applies to quasistatic runs only (this scene has dynamics: each time step starts from the last)",
+                name + ": /solver/predictor");
   parse_scene_rig(root, scene);
   root.finish();
   resolve_ramps(scene);
