@@ -19,6 +19,7 @@
 #include "sinew/forms/elastic_form.hpp"
 #include "sinew/forms/external_force_form.hpp"
 #include "sinew/material/material.hpp"
+#include "sinew/material/spec.hpp"
 #include "sinew/mesh/volume_mesh.hpp"
 #include "sinew/model/scene.hpp"
 #include "sinew/run/simulation.hpp"
@@ -289,6 +290,20 @@ inline PressureSolution cylinder_pressure_solution(double A, double B, double p,
   out.inner_radius = 0.5 * (lo + hi);
   out.outer_radius = cylinder_radial_solution(A, B, out.inner_radius, mu, lambda).outer_radius;
   return out;
+}
+
+// The cylinders' material: Neo-Hookean at E = 1000, nu = 0.3, with the energy's own mu, lambda
+// for the radial ODE.
+struct CylinderMaterial {
+  std::shared_ptr<const Material> material;
+  double mu = 0.0, lambda = 0.0;
+};
+inline CylinderMaterial cylinder_material() {
+  MaterialSpec spec;
+  spec.family = "neo_hookean";
+  spec.target = YoungPoisson{1000.0, 0.3};
+  const auto built = build_material_detailed(spec);
+  return {built.material, built.parameters.values.at("mu"), built.parameters.values.at("lambda")};
 }
 
 // A full annulus A <= R <= B, one layer of thickness `thickness` in z, Nr x Nt hexahedra.
