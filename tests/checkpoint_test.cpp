@@ -232,7 +232,9 @@ TEST(Checkpoint, ResumeRefusesWhenAnyFileTheSceneReadsChanged) {
   // the resume goes on.
   const std::vector<std::pair<std::filesystem::path, std::string>> cases = {
       {mesh_scene, "hex2.mesh"}, {rig_scene, "surface.obj"}, {rig_scene, "rig.json"}, {rig_scene, "bone.obj"}};
-  for (const auto& [scene, name] : cases) {
+  for (const auto& entry : cases) {
+    const auto& [scene, name] = entry;  // (clang 14 cannot capture a structured binding below)
+    const std::filesystem::path& scene_file = scene;
     SCOPED_TRACE(name);
     const auto out = dir / ("out_" + name);
     ASSERT_TRUE(run(scene, out, 2, false).all_converged());
@@ -240,7 +242,7 @@ TEST(Checkpoint, ResumeRefusesWhenAnyFileTheSceneReadsChanged) {
     EXPECT_TRUE(checkpoint["inputs"].contains(name)) << checkpoint["inputs"].dump();
     const std::string original = test::read_file(dir / name);
     dir.write(name, original + (name.ends_with(".json") ? " " : "\n# edited\n"));
-    const std::string message = error_message([&] { run(scene, out, 3, true); });
+    const std::string message = error_message([&] { run(scene_file, out, 3, true); });
     EXPECT_NE(message.find((dir / name).string() + ": changed since checkpoint"), std::string::npos) << message;
     expect_contains(message, {"checkpoint.json", "without --resume"});
     dir.write(name, original);

@@ -1,10 +1,12 @@
-// Surface readers (OBJ, OFF, PLY, STL through CGAL) on the example surfaces and on broken
+// Surface readers (OBJ and STL through CGAL after checks, OFF and PLY read by Sinew) on the example surfaces and on broken
 // files: every rejection names the file and the line, face or edge at fault.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fmt/format.h>
 #include <numbers>
 
 #include "io_test_support.hpp"
@@ -102,6 +104,57 @@ TEST(SurfaceReader, BinaryStlAndQuadsAndNegativeObjIndices) {
       "f 1 3 4 2\nf 5 6 8 7\nf 1//1 2//1 6//1 5//1\nf 3 7 8 4\nf 1 5 7 3\nf -7 -5 -1 -3\n"));
   EXPECT_EQ(cube.num_faces(), 12);
   EXPECT_NEAR(cube.volume(), 1.0, 1e-14);
+}
+
+// PLY and OFF are read by Sinew itself (CGAL's readers trust the file): positions of any numeric
+// type, extra properties and elements walked over, either byte order, the index list found by name.
+TEST(SurfaceReader, PlyAndOffOfEveryPropertyLayout) {
+  TempDir dir;
+  const int P[4][3] = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
+  const int F[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  // x double, y uchar, z short, a colour; an edge element; faces with a flag before the list.
+  for (const bool big : {false, true}) {
+    std::string ply = fmt::format(
+        "ply\nformat binary_{}_endian 1.0\ncomment made by a test\nelement vertex 4\nproperty double x\n"
+        "property uchar y\nproperty short z\nproperty uchar red\nelement edge 1\nproperty int a\nproperty int b\n"
+        "element face 4\nproperty uchar flag\nproperty list uchar uint vertex_index\nend_header\n",
+        big ? "big" : "little");
+    const auto put = [&](auto value) {
+      char b[sizeof value];
+      std::memcpy(b, &value, sizeof value);
+      if (big) std::reverse(b, b + sizeof value);
+      ply.append(b, sizeof value);
+    };
+    for (const auto& p : P) put(double(p[0])), put(std::uint8_t(p[1])), put(std::int16_t(p[2])), put(std::uint8_t(200));
+    put(std::int32_t(0)), put(std::int32_t(1));
+    for (const auto& f : F) {
+      put(std::uint8_t(7)), put(std::uint8_t(3));
+      for (int c : f) put(std::uint32_t(c));
+    }
+    const TriangleSurface s = read_triangle_surface(dir.write("tet.ply", ply));
+    ASSERT_EQ(s.num_vertices(), 4);
+    EXPECT_EQ(s.vertices.row(2), Eigen::RowVector3d(0, 2, 0));
+    EXPECT_NEAR(s.volume(), 8.0 / 6.0, 1e-14);
+  }
+  // ASCII with the same layout.
+  std::string ascii = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty uchar y\nproperty int z\n"
+                      "property uchar red\nelement face 4\nproperty uchar flag\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const auto& p : P) ascii += fmt::format("{} {} {} 200\n", p[0], p[1], p[2]);
+  for (const auto& f : F) ascii += fmt::format("7 3 {} {} {}\n", f[0], f[1], f[2]);
+  EXPECT_NEAR(read_triangle_surface(dir.write("ascii.ply", ascii)).volume(), 8.0 / 6.0, 1e-14);
+  // A PLY without a position or without 'ply' first names what is missing.
+  std::string no_z = ascii;
+  no_z.replace(no_z.find("property int z"), 14, "property int w");
+  expect_contains(error_message([&] { read_triangle_surface(dir.write("no_z.ply", no_z)); }), {"no_z.ply:", "'z'"});
+  expect_contains(error_message([&] { read_triangle_surface(dir.write("magic.ply", ascii.substr(4))); }),
+                  {"magic.ply:1", "'ply'"});
+  // COFF rows carry colours after the position; only the position is read.
+  std::string coff = "COFF\n4 4 0\n";
+  for (const auto& p : P) coff += fmt::format("{} {} {} 255 0 0 255\n", p[0], p[1], p[2]);
+  for (const auto& f : F) coff += fmt::format("3 {} {} {} 10 20 30\n", f[0], f[1], f[2]);
+  EXPECT_NEAR(read_triangle_surface(dir.write("tet.off", coff)).volume(), 8.0 / 6.0, 1e-14);
+  expect_contains(error_message([&] { read_triangle_surface(dir.write("huge.off", "OFF\n2000000000 1 0\n0 0 0\n")); }),
+                  {"huge.off:2", "do not fit"});
 }
 
 TEST(SurfaceReader, BrokenFilesNameTheFileAndTheLine) {
