@@ -171,9 +171,10 @@ TEST(EnergyLimitedStepper, LaggedSolvesFallBackToRefactorisation) {
 }
 
 TEST(EnergyLimitedStepper, SimplicialFactorOfSmallMatricesGivesCholmodsMotion) {
-  // The example scenes' sizes (27 and 56 hexahedra) are factorised by Eigen's simplicial LLT;
-  // CHOLMOD's supernodal factor (simplicial_below = 0) must give the same motion up to the CG
-  // and LCP tolerances, with the limits and contacts held.
+  // The beam's matrices (56 hexahedra, short columns of L) are factorised by Eigen's simplicial
+  // LLT, the sphere's (27 hexahedra, nearly dense) by CHOLMOD; forcing CHOLMOD everywhere
+  // (simplicial_below = 0) must give the same motion up to the CG and LCP tolerances, with the
+  // limits and contacts held.
   SphereConfig sphere;
   sphere.max_energy = 500.0;
   sphere.duration = 1.5;

@@ -99,12 +99,13 @@ TEST(LaggedFactorization, RefreshesWhenTheCgWorkReachesAFactorisationOrOneSolveT
   EXPECT_EQ(c.factorizations, factorizations + 3);
 }
 
-// A 3D lattice Laplacian plus mass with 3 DOFs per vertex: the fill of a hexahedral mesh.
+// A 3D lattice Laplacian plus mass with 3 DOFs per vertex (cells along x, 2 x 2 across): the
+// fill of paper 001's beam.
 Eigen::SparseMatrix<double> lattice_matrix(int cells, double mass) {
-  const int side = cells + 1;
+  const int sx = cells + 1, side = 3;
   auto dof = [&](int i, int j, int k, int d) { return 3 * ((i * side + j) * side + k) + d; };
   std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < side; ++i)
+  for (int i = 0; i < sx; ++i)
     for (int j = 0; j < side; ++j)
       for (int k = 0; k < side; ++k)
         for (int d = 0; d < 3; ++d) {
@@ -113,22 +114,23 @@ Eigen::SparseMatrix<double> lattice_matrix(int cells, double mass) {
             for (int dj = -1; dj <= 1; ++dj)
               for (int dk = -1; dk <= 1; ++dk) {
                 const int a = i + di, b = j + dj, c = k + dk;
-                if ((di == 0 && dj == 0 && dk == 0) || a < 0 || b < 0 || c < 0 || a >= side || b >= side || c >= side)
+                if ((di == 0 && dj == 0 && dk == 0) || a < 0 || b < 0 || c < 0 || a >= sx || b >= side || c >= side)
                   continue;
                 t.emplace_back(dof(i, j, k, d), dof(i, j, k, d), 1.0);
                 t.emplace_back(dof(i, j, k, d), dof(a, b, c, d), -1.0);
               }
         }
-  const Eigen::Index n = 3 * side * side * side;
+  const Eigen::Index n = 3 * sx * side * side;
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(t.begin(), t.end());
   return A;
 }
 
 TEST(LaggedFactorization, SmallMatricesGetEigensSimplicialFactorWithCholmodsAnswers) {
-  // Below `simplicial_below` rows the factorisation is Eigen's simplicial LLT instead of
-  // CHOLMOD's supernodal one: the same solves, lagged solves and cost estimate up to rounding.
-  const Eigen::SparseMatrix<double> A1 = lattice_matrix(4, 1.0), A2 = lattice_matrix(4, 1.2);  // 375 DOFs
+  // Below `simplicial_below` rows (and with short columns of L) the factorisation is Eigen's
+  // simplicial LLT instead of CHOLMOD's supernodal one: the same solves, lagged solves and cost
+  // estimate up to rounding.
+  const Eigen::SparseMatrix<double> A1 = lattice_matrix(14, 1.0), A2 = lattice_matrix(14, 1.2);  // 405 DOFs
   const Eigen::Index n = A1.rows();
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
   const Eigen::MatrixXd B = Eigen::MatrixXd::Identity(n, 5);

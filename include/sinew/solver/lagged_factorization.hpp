@@ -28,10 +28,10 @@ struct FactorizationReuse {
   // A column P^-1 J_i^T is kept while the factorisation lasts and reused while row i's Jacobian
   // stays within this relative distance of the one it was computed for (0: exact match only).
   double column_reuse_tolerance = 0.1;
-  // Matrices with fewer rows than this are factorised by Eigen's simplicial LLT (AMD ordering,
-  // analysed once) instead of CHOLMOD's supernodal one: at a few hundred DOFs CHOLMOD's fixed
-  // costs (permuting A into a new matrix, workspace allocation, BLAS calls on tiny supernodes)
-  // are most of a factorisation and of a solve (docs/performance.md, paper 001's example scenes).
+  // Matrices with fewer rows than this whose factor has short columns (lagged_factorization.cpp)
+  // are factorised by Eigen's simplicial LLT (AMD ordering, analysed once) instead of CHOLMOD's
+  // supernodal one, whose fixed costs (permuting A into a new matrix, BLAS calls on tiny
+  // supernodes) are then most of a factorisation (docs/performance.md, paper 001's examples).
   // Both give the same factor up to rounding; 0 always uses CHOLMOD.
   int simplicial_below = 1000;
 };
