@@ -56,21 +56,24 @@ def run_once(binary, scene, out):
     return wall, usage.ru_utime + usage.ru_stime, frames
 
 
-def measure(binary, name, scene, repeats, folder):
-    solve, frame, wall, cpu = [], [], [], []
+def measure(binaries, name, scene, repeats, folder):
+    """Runs each binary `repeats` times, alternating between them so that they share the load."""
+    runs = {label: ([], [], [], []) for label, _ in binaries}
     for r in range(repeats):
-        w, c, frames = run_once(binary, scene, os.path.join(folder, f"{name}_{r}"))
-        solve += [1e3 * f["solve_seconds"] for f in frames]
-        frame += [1e3 * f["seconds"] for f in frames]
-        wall.append(1e3 * w / len(frames))
-        cpu.append(1e3 * c / len(frames))
-    return statistics.median(solve), statistics.median(frame), statistics.median(wall), statistics.median(cpu)
+        for label, binary in binaries:
+            w, c, frames = run_once(binary, scene, os.path.join(folder, f"{name}_{label}_{r}"))
+            solve, frame, wall, cpu = runs[label]
+            solve += [1e3 * f["solve_seconds"] for f in frames]
+            frame += [1e3 * f["seconds"] for f in frames]
+            wall.append(1e3 * w / len(frames))
+            cpu.append(1e3 * c / len(frames))
+    return {label: tuple(statistics.median(v) for v in runs[label]) for label, _ in binaries}
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--sinew", default=os.path.join(ROOT, "build", "sinew"))
-    parser.add_argument("--old", help="a second binary to compare with (run alternately with --sinew)")
+    parser.add_argument("--old", help="a second binary to compare with (the two run alternately)")
     parser.add_argument("--repeats", type=int, default=5)
     args = parser.parse_args()
     binaries = [("old", args.old)] if args.old else []
@@ -82,8 +85,9 @@ def main():
             scenes = [("files", os.path.join(ROOT, "examples", name + ".json")),
                       ("none", scene_without_output(name, folder))]
             for output, scene in scenes:
-                for label, binary in binaries:
-                    s, f, w, c = measure(binary, f"{name}_{label}_{output}", scene, args.repeats, folder)
+                results = measure(binaries, f"{name}_{output}", scene, args.repeats, folder)
+                for label, _ in binaries:
+                    s, f, w, c = results[label]
                     print(f"{name:<18} {label:<6} {output:<7} {s:>11.2f} {f:>11.2f} {w:>10.1f} {c:>9.1f}", flush=True)
 
 
