@@ -1,7 +1,7 @@
 #include "sinew/integrator/energy_limited_stepper.hpp"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 
@@ -138,31 +138,43 @@ Linearisation linearise_constraints(const ElementForm& model, const EnergyLimite
 struct EnergyLimitedStepper::Factorization {
   LaggedFactorization backward_euler, lagrangian;
   Eigen::SparseMatrix<double> A, H;
-  std::vector<int> block_slots;       // [e][24 a + ... ]: index into A's values, row-major per element
-  std::vector<int> slots_pattern;     // A's outer index (and nnz) the slots were found for
-  // Positions of every element's block in A (compressed); found again when A's pattern changed.
-  const std::vector<int>& slots(const Discretization& disc) {
-    const Eigen::Index n = A.outerSize();
-    std::vector<int> pattern(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
-    if (pattern == slots_pattern && !block_slots.empty()) return block_slots;
+  // Per element (filled when it is first stiffened): the index among A's values of each entry of
+  // its block, row-major over the element's DOFs; valid for the pattern below.
+  std::vector<std::vector<int>> block_slots;
+  std::vector<int> slots_outer, slots_inner;  // A's pattern the slots were found for
+
+  // Drops the slots when A's pattern is not the one they were found for (A compressed).
+  void check_pattern() {
+    const int* outer = A.outerIndexPtr();
+    const int* inner = A.innerIndexPtr();
+    const bool same = static_cast<Eigen::Index>(slots_outer.size()) == A.outerSize() + 1 &&
+                      static_cast<Eigen::Index>(slots_inner.size()) == A.nonZeros() &&
+                      std::equal(slots_outer.begin(), slots_outer.end(), outer) &&
+                      std::equal(slots_inner.begin(), slots_inner.end(), inner);
+    if (same) return;
+    slots_outer.assign(outer, outer + A.outerSize() + 1);
+    slots_inner.assign(inner, inner + A.nonZeros());
+    block_slots.clear();
+  }
+  const std::vector<int>& slots(const Discretization& disc, Eigen::Index e) {
+    block_slots.resize(static_cast<size_t>(disc.num_elements()));
+    std::vector<int>& s = block_slots[static_cast<size_t>(e)];
+    if (!s.empty()) return s;
     const auto& elements = disc.mesh().elements;
     const int dofs = 3 * disc.nodes();
-    block_slots.assign(static_cast<size_t>(disc.num_elements() * dofs * dofs), -1);
-    for (Eigen::Index e = 0; e < disc.num_elements(); ++e)
-      for (int a = 0; a < disc.nodes(); ++a)
-        for (int o = 0; o < disc.nodes(); ++o)
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) {
-              const int r = 3 * elements(e, a) + i, c = 3 * elements(e, o) + j;
-              const int* begin = A.innerIndexPtr() + A.outerIndexPtr()[c];
-              const int* end = A.innerIndexPtr() + A.outerIndexPtr()[c + 1];
-              const int* it = std::lower_bound(begin, end, r);
-              if (it == end || *it != r) throw Error("the step matrix lacks an element block entry", "constrained stepper");
-              block_slots[static_cast<size_t>((e * dofs + 3 * a + i) * dofs + 3 * o + j)] =
-                  static_cast<int>(it - A.innerIndexPtr());
-            }
-    slots_pattern = std::move(pattern);
-    return block_slots;
+    s.resize(static_cast<size_t>(dofs * dofs));
+    for (int a = 0; a < disc.nodes(); ++a)
+      for (int o = 0; o < disc.nodes(); ++o)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const int r = 3 * elements(e, a) + i, c = 3 * elements(e, o) + j;
+            const int* begin = A.innerIndexPtr() + A.outerIndexPtr()[c];
+            const int* end = A.innerIndexPtr() + A.outerIndexPtr()[c + 1];
+            const int* it = std::lower_bound(begin, end, r);
+            if (it == end || *it != r) throw Error("the step matrix lacks an element block entry", "constrained stepper");
+            s[static_cast<size_t>((3 * a + i) * dofs + 3 * o + j)] = static_cast<int>(it - A.innerIndexPtr());
+          }
+    return s;
   }
 };
 
@@ -267,6 +279,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   Eigen::SparseMatrix<double>& A = factor_->A;
   A = *potential_->hessian(x0).matrix();
   A.makeCompressed();
+  factor_->check_pattern();
   const Eigen::VectorXd f0 = -potential_->gradient(x0);
   A *= h * h;
   Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * f0;
@@ -336,7 +349,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
       const int dofs = 3 * disc.nodes();
       for (const auto& [key, lambda_e] : warm) {
         if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
-        const std::vector<int>& slots = factor_->slots(disc);
+        const std::vector<int>& slots = factor_->slots(disc, key);
         const Eigen::MatrixXd He = limited_->element_hessian(key, x_k) * (h * lambda_e / limit->max_energy);
         double* values = H.valuePtr();
         for (int a = 0; a < disc.nodes(); ++a)
@@ -359,7 +372,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
                   values = H.valuePtr();
                   stiffened = true;
                 }
-                values[slots[static_cast<size_t>((key * dofs + 3 * a + i) * dofs + 3 * o + j)]] += He(3 * a + i, 3 * o + j);
+                values[slots[static_cast<size_t>((3 * a + i) * dofs + 3 * o + j)]] += He(3 * a + i, 3 * o + j);
               }
       }
     }
