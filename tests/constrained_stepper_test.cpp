@@ -170,4 +170,42 @@ TEST(EnergyLimitedStepper, LaggedSolvesFallBackToRefactorisation) {
   EXPECT_NEAR(b.rebound_height, a.rebound_height, 1e-6);
 }
 
+TEST(EnergyLimitedStepper, SimplicialFactorOfSmallMatricesGivesCholmodsMotion) {
+  // The beam's matrices (56 hexahedra, short columns of L) are factorised by Eigen's simplicial
+  // LLT, the sphere's (27 hexahedra, nearly dense) by CHOLMOD; forcing CHOLMOD everywhere
+  // (simplicial_below = 0) must give the same motion up to the CG and LCP tolerances, with the
+  // limits and contacts held.
+  SphereConfig sphere;
+  sphere.max_energy = 500.0;
+  sphere.duration = 1.5;
+  SphereConfig sphere_cholmod = sphere;
+  sphere_cholmod.solver.reuse.simplicial_below = 0;
+  const SphereResult a = run_falling_sphere(sphere_cholmod), b = run_falling_sphere(sphere);
+  fmt::print("sphere U_e <= 500 J: CHOLMOD {} factorisations + {} CG, simplicial {} + {}; compression {:.6f} / {:.6f}, "
+             "rebound {:.6f} / {:.6f}\n",
+             a.totals.factorizations, a.totals.cg_iterations, b.totals.factorizations, b.totals.cg_iterations,
+             a.peak_compression, b.peak_compression, a.rebound_height, b.rebound_height);
+  EXPECT_GT(b.totals.max_active_energy, 0);
+  EXPECT_GT(b.totals.max_active_contacts, 0);
+  EXPECT_EQ(b.totals.unconverged_steps, 0);
+  EXPECT_NEAR(b.peak_compression, a.peak_compression, 1e-4);
+  EXPECT_NEAR(b.rebound_height, a.rebound_height, 1e-4);
+  EXPECT_LE(b.max_penetration, sphere.solver.contact_tolerance);
+  EXPECT_LE(b.totals.max_element_energy, 500.0 * (1.0 + sphere.solver.energy_tolerance));
+
+  BeamConfig beam;
+  beam.max_energy = 0.5;
+  beam.duration = 1.0;
+  BeamConfig beam_cholmod = beam;
+  beam_cholmod.solver.reuse.simplicial_below = 0;
+  const BeamResult c = run_beam(beam_cholmod), d = run_beam(beam);
+  fmt::print("beam U_e <= 0.5 J: CHOLMOD {} factorisations + {} CG, simplicial {} + {}; tip deflection {:.7f} / {:.7f} m\n",
+             c.totals.factorizations, c.totals.cg_iterations, d.totals.factorizations, d.totals.cg_iterations,
+             c.max_tip_deflection, d.max_tip_deflection);
+  EXPECT_GT(d.totals.max_active_energy, 0);
+  EXPECT_EQ(d.totals.unconverged_steps, 0);
+  EXPECT_NEAR(d.max_tip_deflection, c.max_tip_deflection, 1e-4 * c.max_tip_deflection);
+  EXPECT_LE(d.totals.max_element_energy, 0.5 * (1.0 + beam.solver.energy_tolerance));
+}
+
 }  // namespace sinew

@@ -99,5 +99,73 @@ TEST(LaggedFactorization, RefreshesWhenTheCgWorkReachesAFactorisationOrOneSolveT
   EXPECT_EQ(c.factorizations, factorizations + 3);
 }
 
+// A 3D lattice Laplacian plus mass with 3 DOFs per vertex (cells along x, 2 x 2 across): the
+// fill of paper 001's beam.
+Eigen::SparseMatrix<double> lattice_matrix(int cells, double mass) {
+  const int sx = cells + 1, side = 3;
+  auto dof = [&](int i, int j, int k, int d) { return 3 * ((i * side + j) * side + k) + d; };
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < sx; ++i)
+    for (int j = 0; j < side; ++j)
+      for (int k = 0; k < side; ++k)
+        for (int d = 0; d < 3; ++d) {
+          t.emplace_back(dof(i, j, k, d), dof(i, j, k, d), mass);
+          for (int di = -1; di <= 1; ++di)
+            for (int dj = -1; dj <= 1; ++dj)
+              for (int dk = -1; dk <= 1; ++dk) {
+                const int a = i + di, b = j + dj, c = k + dk;
+                if ((di == 0 && dj == 0 && dk == 0) || a < 0 || b < 0 || c < 0 || a >= sx || b >= side || c >= side)
+                  continue;
+                t.emplace_back(dof(i, j, k, d), dof(i, j, k, d), 1.0);
+                t.emplace_back(dof(i, j, k, d), dof(a, b, c, d), -1.0);
+              }
+        }
+  const Eigen::Index n = 3 * sx * side * side;
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+TEST(LaggedFactorization, SmallMatricesGetEigensSimplicialFactorWithCholmodsAnswers) {
+  // Below `simplicial_below` rows (and with short columns of L) the factorisation is Eigen's
+  // simplicial LLT instead of CHOLMOD's supernodal one: the same solves, lagged solves and cost
+  // estimate up to rounding.
+  const Eigen::SparseMatrix<double> A1 = lattice_matrix(14, 1.0), A2 = lattice_matrix(14, 1.2);  // 405 DOFs
+  const Eigen::Index n = A1.rows();
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Identity(n, 5);
+  FactorizationReuse simplicial, cholmod;
+  simplicial.cg_tolerance = cholmod.cg_tolerance = 1e-12;
+  simplicial.max_cg_iterations = cholmod.max_cg_iterations = 100;
+  cholmod.simplicial_below = 0;
+  ASSERT_GT(simplicial.simplicial_below, n);
+  LaggedFactorization S, C;
+  LaggedFactorization::Counters cs, cc;
+  S.use(A1, simplicial, cs);
+  C.use(A1, cholmod, cc);
+  Eigen::VectorXd xs, xc;
+  S.solve(b, xs, false, cs);
+  C.solve(b, xc, false, cc);
+  EXPECT_LT((A1 * xs - b).norm(), 1e-12 * b.norm());
+  EXPECT_LT((xs - xc).norm(), 1e-12 * xc.norm());
+  EXPECT_LT((S.apply_inverse(B) - C.apply_inverse(B)).norm(), 1e-12 * C.apply_inverse(B).norm());
+  // Both estimate the cost of a refresh from the factor's own counts (different orderings).
+  EXPECT_GT(S.refresh_cost(), 0.0);
+  EXPECT_GT(C.refresh_cost(), 0.0);
+  EXPECT_LT(S.refresh_cost(), 3.0 * C.refresh_cost());
+  EXPECT_GT(S.refresh_cost(), C.refresh_cost() / 3.0);
+
+  // The lagged factorisation of A1 solves with A2 by CG either way.
+  S.use(A2, simplicial, cs);
+  C.use(A2, cholmod, cc);
+  S.solve(b, xs, false, cs);
+  C.solve(b, xc, false, cc);
+  EXPECT_EQ(cs.factorizations, 1);
+  EXPECT_EQ(cc.factorizations, 1);
+  EXPECT_GT(cs.cg_iterations, 1);
+  EXPECT_LT((A2 * xs - b).norm(), 1e-11 * b.norm());
+  EXPECT_LT((xs - xc).norm(), 1e-10 * xc.norm());
+}
+
 }  // namespace
 }  // namespace sinew

@@ -1,5 +1,6 @@
 #include "sinew/integrator/energy_limited_stepper.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -129,8 +130,52 @@ Linearisation linearise_constraints(const ElementForm& model, const EnergyLimite
 // a Lagrangian Hessian H (later iterations; A with the limit-active elements stiffened). Each
 // preconditions the matrices of its kind, which change slowly from step to step, while A and H
 // differ much more from each other.
+//
+// The step's matrices live here too, so that their storage is reused from step to step (on
+// small meshes allocating and freeing them cost as much as the arithmetic), with, per element,
+// the positions of its 24 x 24 block among A's stored values, so that H = A + element blocks is
+// a copy and indexed additions.
 struct EnergyLimitedStepper::Factorization {
   LaggedFactorization backward_euler, lagrangian;
+  Eigen::SparseMatrix<double> A, H;
+  // Per element (filled when it is first stiffened): the index among A's values of each entry of
+  // its block, row-major over the element's DOFs; valid for the pattern below.
+  std::vector<std::vector<int>> block_slots;
+  std::vector<int> slots_outer, slots_inner;  // A's pattern the slots were found for
+
+  // Drops the slots when A's pattern is not the one they were found for (A compressed).
+  void check_pattern() {
+    const int* outer = A.outerIndexPtr();
+    const int* inner = A.innerIndexPtr();
+    const bool same = static_cast<Eigen::Index>(slots_outer.size()) == A.outerSize() + 1 &&
+                      static_cast<Eigen::Index>(slots_inner.size()) == A.nonZeros() &&
+                      std::equal(slots_outer.begin(), slots_outer.end(), outer) &&
+                      std::equal(slots_inner.begin(), slots_inner.end(), inner);
+    if (same) return;
+    slots_outer.assign(outer, outer + A.outerSize() + 1);
+    slots_inner.assign(inner, inner + A.nonZeros());
+    block_slots.clear();
+  }
+  const std::vector<int>& slots(const Discretization& disc, Eigen::Index e) {
+    block_slots.resize(static_cast<size_t>(disc.num_elements()));
+    std::vector<int>& s = block_slots[static_cast<size_t>(e)];
+    if (!s.empty()) return s;
+    const auto& elements = disc.mesh().elements;
+    const int dofs = 3 * disc.nodes();
+    s.resize(static_cast<size_t>(dofs * dofs));
+    for (int a = 0; a < disc.nodes(); ++a)
+      for (int o = 0; o < disc.nodes(); ++o)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const int r = 3 * elements(e, a) + i, c = 3 * elements(e, o) + j;
+            const int* begin = A.innerIndexPtr() + A.outerIndexPtr()[c];
+            const int* end = A.innerIndexPtr() + A.outerIndexPtr()[c + 1];
+            const int* it = std::lower_bound(begin, end, r);
+            if (it == end || *it != r) throw Error("the step matrix lacks an element block entry", "constrained stepper");
+            s[static_cast<size_t>((3 * a + i) * dofs + 3 * o + j)] = static_cast<int>(it - A.innerIndexPtr());
+          }
+    return s;
+  }
 };
 
 void EnergyLimitedStepTotals::add(const EnergyLimitedStepReport& r) {
@@ -231,7 +276,10 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   // ---- unconstrained backward Euler (Eq. 19): (M + h^2 K) v* = M v0 + h f(x0)
   // The potential's raw Hessian K and forces f = -grad E at x0; the prescribed velocities are
   // lifted to the right-hand side (b -= A v_fixed) before their rows and columns become identity.
-  Eigen::SparseMatrix<double> A = *potential_->hessian(x0).matrix();
+  Eigen::SparseMatrix<double>& A = factor_->A;
+  A = *potential_->hessian(x0).matrix();
+  A.makeCompressed();
+  factor_->check_pattern();
   const Eigen::VectorXd f0 = -potential_->gradient(x0);
   A *= h * h;
   Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * f0;
@@ -276,7 +324,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   // multiplier estimates: the converged step is the same, it is reached in fewer iterations).
   std::map<long, double> warm = multipliers_;
   std::map<long, char> ever_active;
-  Eigen::SparseMatrix<double> H;
+  Eigen::SparseMatrix<double>& H = factor_->H;
   auto t_lcp = Clock::now();
   for (int k = 0;; ++k) {
     const Eigen::VectorXd x_k = x0 + h * v_k;
@@ -296,23 +344,39 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     }
 
     // ---- quadratic model: H = A plus the curvature of the energy constraints with lambda > 0
-    std::vector<Eigen::Triplet<double>> extra;
+    bool stiffened = false;
     if (limit) {
+      const int dofs = 3 * disc.nodes();
       for (const auto& [key, lambda_e] : warm) {
         if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
+        const std::vector<int>& slots = factor_->slots(disc, key);
         const Eigen::MatrixXd He = limited_->element_hessian(key, x_k) * (h * lambda_e / limit->max_energy);
+        double* values = H.valuePtr();
         for (int a = 0; a < disc.nodes(); ++a)
           for (int o = 0; o < disc.nodes(); ++o)
             for (int i = 0; i < 3; ++i)
               for (int j = 0; j < 3; ++j) {
                 const Eigen::Index r = 3 * elements(key, a) + i, c = 3 * elements(key, o) + j;
-                if (!fixed[r] && !fixed[c]) extra.emplace_back(r, c, He(3 * a + i, 3 * o + j));
+                if (fixed[r] || fixed[c]) continue;
+                if (!stiffened) {
+                  // H = A: same pattern (A holds every element block), so A's values are copied
+                  // into H's storage, kept from earlier steps.
+                  const bool same_pattern =
+                      H.isCompressed() && H.outerSize() == A.outerSize() && H.nonZeros() == A.nonZeros() &&
+                      std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, H.outerIndexPtr()) &&
+                      std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), H.innerIndexPtr());
+                  if (same_pattern)
+                    std::copy(A.valuePtr(), A.valuePtr() + A.nonZeros(), H.valuePtr());
+                  else
+                    H = A;
+                  values = H.valuePtr();
+                  stiffened = true;
+                }
+                values[slots[static_cast<size_t>((3 * a + i) * dofs + 3 * o + j)]] += He(3 * a + i, 3 * o + j);
               }
       }
     }
-    if (!extra.empty()) {
-      H = A;  // same pattern: A holds every element block
-      for (const Eigen::Triplet<double>& t : extra) H.coeffRef(t.row(), t.col()) += t.value();
+    if (stiffened) {
       use(H, factor_->lagrangian);
     } else if (current != &A) {
       use(A, factor_->backward_euler);

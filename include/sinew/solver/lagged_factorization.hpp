@@ -1,5 +1,6 @@
 #pragma once
-// A sparse Cholesky factorisation (CHOLMOD, supernodal) of an earlier matrix, used for solves
+// A sparse Cholesky factorisation (CHOLMOD supernodal, or Eigen's simplicial LLT for small
+// matrices) of an earlier matrix, used for solves
 // with the current one: directly while it is of the current matrix, else by CG preconditioned
 // with it, which stays exact to the CG tolerance. It is refreshed when the CG work it has caused
 // reaches the cost of a new factorisation (rent-or-buy; the costs come from CHOLMOD's own flop
@@ -27,6 +28,12 @@ struct FactorizationReuse {
   // A column P^-1 J_i^T is kept while the factorisation lasts and reused while row i's Jacobian
   // stays within this relative distance of the one it was computed for (0: exact match only).
   double column_reuse_tolerance = 0.1;
+  // Matrices with fewer rows than this whose factor has short columns (lagged_factorization.cpp)
+  // are factorised by Eigen's simplicial LLT (AMD ordering, analysed once) instead of CHOLMOD's
+  // supernodal one, whose fixed costs (permuting A into a new matrix, BLAS calls on tiny
+  // supernodes) are then most of a factorisation (docs/performance.md, paper 001's examples).
+  // Both give the same factor up to rounding; 0 always uses CHOLMOD.
+  int simplicial_below = 1000;
 };
 
 class LaggedFactorization {
@@ -68,8 +75,12 @@ class LaggedFactorization {
   // CG from `out` (or zero); false when it did not reach the tolerance within the budget.
   bool preconditioned_cg(const Eigen::VectorXd& r, Eigen::VectorXd& out, bool guess, Counters& counters);
 
-  struct Cholmod;
-  std::unique_ptr<Cholmod> cholmod_;
+  // z = P^-1 r with the factorisation at hand.
+  Eigen::VectorXd precondition(const Eigen::VectorXd& r) const;
+
+  struct Backends;
+  std::unique_ptr<Backends> backends_;
+  bool simplicial_ = false;  // chosen with the symbolic analysis, from the matrix size
   const Eigen::SparseMatrix<double>* current_ = nullptr;
   FactorizationReuse reuse_;
   bool analysed_ = false, valid_ = false, exact_ = false;
