@@ -1,7 +1,7 @@
 // Algebraic multigrid (hypre BoomerAMG): the V-cycle is a symmetric positive definite
 // preconditioner; PCG's iteration count stays nearly flat as a tetrahedral mesh is refined at
-// nu = 0.49 while block-Jacobi's grows; it works on hexahedra too, uses the rigid-body modes
-// when it knows the mesh, rebuilds for each new matrix (sizes may change) and drives Newton
+// nu = 0.49 while block-Jacobi's grows; it works on hexahedra too, with hypre's elasticity
+// options (nodal coarsening, rigid-body modes when it knows the mesh) as well, rebuilds for each new matrix (sizes may change) and drives Newton
 // through the settings; it needs the assembled matrix.
 #include <gtest/gtest.h>
 
@@ -61,7 +61,7 @@ TEST(AmgPreconditioner, IsSymmetricPositiveDefiniteAndLeavesFixedDofs) {
   AmgPreconditioner M;
   M.setup(H, bar.context());
   EXPECT_GE(M.levels(), 2);
-  EXPECT_TRUE(M.used_rigid_body_modes());
+  EXPECT_FALSE(M.used_rigid_body_modes());  // off by default
   EXPECT_GT(M.operator_complexity(), 1.0);
   EXPECT_LT(M.operator_complexity(), 4.0);
   Eigen::VectorXd u = bar.rhs(), v(u.size()), Mu, Mv;
@@ -111,33 +111,48 @@ TEST(AmgPreconditioner, IterationsStayNearlyFlatAsATetMeshIsRefined) {
   EXPECT_GT(bj[2], bj[1]);
 }
 
-TEST(AmgPreconditioner, SolvesHexLatticesAndBareMatrices) {
+TEST(AmgPreconditioner, SolvesHexLatticesWithAndWithoutTheElasticityOptions) {
   Bar bar(Eigen::Vector3i(6, 6, 8), 0.45, /*tets=*/false);
   const LinearOperator& H = bar.problem->hessian(bar.x);
   const Eigen::VectorXd b = bar.rhs();
-  Eigen::VectorXd x, Ax;
-  PcgSolver with_mesh(make_preconditioner("amg"), 1000);
-  const LinearSolveReport r = with_mesh.solve(H, b, x, 1e-10, bar.context());
-  EXPECT_TRUE(r.converged);
-  H.apply(x, Ax);
-  EXPECT_LE((Ax - b).norm(), 1.01e-10 * b.norm());
-  EXPECT_TRUE(dynamic_cast<AmgPreconditioner&>(with_mesh.preconditioner()).used_rigid_body_modes());
-  // Without the mesh: nodal AMG alone (no rotations to interpolate), still converging.
-  PcgSolver bare(make_preconditioner("amg"), 1000);
-  const LinearSolveReport r2 = bare.solve(H, b, x, 1e-10, SolverContext{nullptr, bar.problem->fixed()});
-  EXPECT_TRUE(r2.converged);
-  EXPECT_FALSE(dynamic_cast<AmgPreconditioner&>(bare.preconditioner()).used_rigid_body_modes());
-  std::printf("6 x 6 x 8 hexahedra, nu = 0.45: amg %d PCG iterations with rigid-body modes, %d without\n", r.iterations,
-              r2.iterations);
+  AmgSettings elasticity;
+  elasticity.nodal = 4;
+  elasticity.rigid_body_modes = true;
+  struct Case {
+    const char* what;
+    AmgSettings settings;
+    bool with_mesh, expect_modes;
+  };
+  for (const Case& c : {Case{"default", AmgSettings{}, true, false}, Case{"nodal + rigid-body modes", elasticity, true, true},
+                        Case{"nodal, no mesh", elasticity, false, false}}) {
+    PcgSolver pcg(std::make_unique<AmgPreconditioner>(c.settings), 1000);
+    Eigen::VectorXd x, Ax;
+    const SolverContext context{c.with_mesh ? bar.disc : nullptr, bar.problem->fixed()};
+    const LinearSolveReport r = pcg.solve(H, b, x, 1e-10, context);
+    EXPECT_TRUE(r.converged) << c.what;
+    H.apply(x, Ax);
+    EXPECT_LE((Ax - b).norm(), 1.01e-10 * b.norm()) << c.what;
+    const auto& M = dynamic_cast<AmgPreconditioner&>(pcg.preconditioner());
+    EXPECT_EQ(M.used_rigid_body_modes(), c.expect_modes) << c.what;
+    std::printf("6 x 6 x 8 hexahedra, nu = 0.45, amg %s: %d PCG iterations to 1e-10, operator complexity %.2f\n", c.what,
+                r.iterations, M.operator_complexity());
+  }
+}
+
+// The vertices on the plane z = height (outward normal (0, 0, normal_z)) moved by `motion`.
+KinematicCondition face(const Eigen::MatrixX3d& rest, double height, double normal_z, RigidMotion motion, const std::string& name) {
+  KinematicCondition c;
+  c.vertices = select_vertices(rest, PlaneSelector{{0, 0, height}, {0, 0, normal_z}}, name);
+  c.motion = std::move(motion);
+  c.source = name;
+  return c;
 }
 
 TEST(AmgPreconditioner, DrivesNewtonThroughTheSettingsOnTetrahedra) {
   Bar bar(Eigen::Vector3i(3, 3, 6), 0.45, /*tets=*/true);
-  std::vector<KinematicCondition> bcs;
-  bcs.push_back({select_vertices(bar.disc->mesh().vertices, PlaneSelector{{0, 0, 0}, {0, 0, -1}}, "bottom"), Pinned{},
-                 "bottom", {true, true, true}, {}});
-  bcs.push_back({select_vertices(bar.disc->mesh().vertices, PlaneSelector{{0, 0, 6}, {0, 0, 1}}, "top"),
-                 Translation{{0.3, 0, 0.5}}, "top", {true, true, true}, {}});
+  const Eigen::MatrixX3d& rest = bar.disc->mesh().vertices;
+  const std::vector<KinematicCondition> bcs = {face(rest, 0.0, -1.0, Pinned{}, "bottom"),
+                                               face(rest, 6.0, 1.0, Translation{{0.3, 0, 0.5}}, "top")};
   std::vector<char> fixed(bar.x.size(), 0);
   apply_kinematics(bcs, bar.disc->mesh().vertices, 1.0, bar.x, fixed);
   bar.problem->set_fixed(fixed);

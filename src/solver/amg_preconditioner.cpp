@@ -134,6 +134,7 @@ void AmgPreconditioner::setup(const LinearOperator& op, const SolverContext& con
   HYPRE_BoomerAMGSetNumSweeps(amg, settings_.sweeps);
   HYPRE_BoomerAMGSetCycleRelaxType(amg, 9, 3);  // the coarsest level: Gaussian elimination
   // Systems AMG: unknowns interleaved x, y, z per vertex, which is hypre's default order.
+  // Nodal coarsening (optional): a vertex is coarse or fine as a whole.
   HYPRE_BoomerAMGSetNumFunctions(amg, 3);
   if (settings_.nodal > 0) {
     HYPRE_BoomerAMGSetNodal(amg, settings_.nodal);

@@ -36,7 +36,7 @@ class Registry {
                         "block_jacobi on meshes without a lattice grid",
                         [] { return std::make_unique<MultigridPreconditioner>(); }});
     entries_.push_back({"amg",
-                        "algebraic multigrid V-cycle (hypre BoomerAMG, nodal coarsening, rigid-body modes); "
+                        "algebraic multigrid V-cycle (hypre BoomerAMG, systems AMG for 3 unknowns per vertex); "
                         "any mesh",
                         [] { return std::make_unique<AmgPreconditioner>(); }});
   }

@@ -1,17 +1,20 @@
 #pragma once
 // Algebraic multigrid for any mesh ("amg"): one V-cycle of hypre's BoomerAMG per application,
 // built from the assembled matrix alone, so it works on tetrahedra, meshes read from files and
-// lattices alike (geometric "multigrid" needs a lattice grid). Elasticity settings after hypre's
-// and MFEM's: systems AMG with 3 unknowns per vertex and nodal coarsening (a vertex is coarse or
-// fine as a whole, by the norms of its 3x3 blocks), HMIS coarsening, extended+i interpolation
-// and, when the mesh is known, the rigid-body rotations about the rest shape as interpolation
-// vectors (GM-2), which the unknown-based interpolation cannot represent. Smoothing is
-// l1-scaled symmetric Gauss-Seidel before and after each coarse correction (the same sweep),
-// so the V-cycle is symmetric and serves as CG's preconditioner.
+// lattices alike (geometric "multigrid" needs a lattice grid). Systems AMG with 3 unknowns per
+// vertex (x, y, z interleaved; only like unknowns couple in the hierarchy), HMIS coarsening,
+// extended+i interpolation truncated to 4 entries per row, and l1-scaled symmetric Gauss-Seidel
+// before and after each coarse correction (the same sweep), so the V-cycle is symmetric and
+// serves as CG's preconditioner.
+//
+// hypre's elasticity options (nodal coarsening, the rigid-body rotations as interpolation
+// vectors, as MFEM sets them) are settings: on the nu = 0.49 tetrahedral bars of the tests and
+// bench/preconditioner_bench.cpp they saved a few CG iterations but multiplied the hierarchy's
+// size (operator complexity 13-24 against 3) and its setup time, so they are off by default.
 //
 // Each setup (each Newton matrix) copies the matrix into hypre and builds a new hierarchy:
 // BoomerAMG has no numeric-only refresh. Fixed DOFs need nothing special: their rows and
-// columns are the identity, decoupled vertices AMG leaves on the finest level.
+// columns are the identity, decoupled unknowns AMG leaves on the finest level.
 #include <Eigen/Core>
 #include <memory>
 #include <vector>
@@ -20,7 +23,7 @@
 
 namespace sinew {
 
-// hypre's numbering for the choices (HYPRE_parcsr_ls.h); the defaults are the elasticity ones.
+// hypre's numbering for the choices (HYPRE_parcsr_ls.h).
 struct AmgSettings {
   double strong_threshold = 0.5;  // hypre's advice for 3D problems (0.25 is for 2D)
   int coarsen_type = 10;          // 10 HMIS, 8 PMIS, 6 Falgout
@@ -29,8 +32,8 @@ struct AmgSettings {
   int max_interp_elements = 4;    // per row of P (truncation)
   int relax_type = 8;             // 8 l1-scaled symmetric Gauss-Seidel, 16 Chebyshev
   int sweeps = 1;                 // smoothing sweeps before and after each coarse correction
-  int nodal = 4;                  // strength between vertices: 0 off (per unknown), 1 Frobenius, 4 row sum
-  bool rigid_body_modes = true;   // rotations as interpolation vectors (needs the mesh)
+  int nodal = 0;                  // coarsen per vertex, strength from its blocks' norms: 0 off, 1 Frobenius, 4 row sum
+  bool rigid_body_modes = false;  // with nodal > 0 and the mesh: rotations as interpolation vectors (GM-2)
   int max_levels = 25;
 };
 

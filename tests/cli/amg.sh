@@ -1,0 +1,45 @@
+# `sinew run` with the "amg" preconditioner (hypre BoomerAMG): a tetrahedral bar (no lattice
+# grid, so geometric multigrid could not coarsen it) converges every frame, as with CHOLMOD, and
+# ends where CHOLMOD's run ends; MPI starts without mpirun and nothing is left on stderr.
+source "$(dirname "$0")/common.bash"
+
+scene() {
+  cat <<EOF2
+{
+  "mesh": {"box": {"min": [0, 0, 0], "max": [0.25, 0.25, 1]}, "cells": [3, 3, 12], "element": "tet"},
+  "material": {"family": "stable_neo_hookean", "E": 1e5, "nu": 0.49},
+  "boundary": [
+    {"name": "bottom", "select": {"plane": {"point": [0, 0, 0], "normal": [0, 0, -1]}}},
+    {"name": "top", "select": {"plane": {"point": [0, 0, 1], "normal": [0, 0, 1]}},
+     "motion": {"type": "translate", "per_frame": [0.05, 0, -0.05]}}
+  ],
+  "solver": {"newton": {"convergence": "absolute", "tolerance": 1e-6}, "linear": $1},
+  "frames": 2
+}
+EOF2
+}
+scene '{"kind": "pcg", "preconditioner": "amg", "tolerance": 1e-8}' >"$TMP/amg.json"
+scene '{"kind": "cholmod"}' >"$TMP/direct.json"
+
+run run "$TMP/amg.json" --out "$TMP/amg" --quiet
+[[ $RC -eq 0 ]] || fail "amg.json exited $RC: $(cat "$TMP/err")"
+[[ ! -s $TMP/err ]] || fail "amg run wrote to stderr: $(cat "$TMP/err")"
+run run "$TMP/direct.json" --out "$TMP/direct" --quiet
+[[ $RC -eq 0 ]] || fail "direct.json exited $RC: $(cat "$TMP/err")"
+
+"$PY" - "$TMP/amg/summary.json" "$TMP/direct/summary.json" "$TMP/amg/frame_0002.vtu" "$TMP/direct/frame_0002.vtu" <<'EOF2' ||
+import json, re, sys
+amg, direct = (json.load(open(p)) for p in sys.argv[1:3])
+assert amg["all_converged"] and amg["frames_completed"] == 2, amg
+assert "amg" in json.dumps(amg), "the summary does not name the preconditioner"
+def points(path):
+    text = open(path).read()
+    block = re.search(r'<Points>.*?>(.*?)</DataArray>', text, re.S)
+    return [float(v) for v in block.group(1).split()] if block else None
+a, d = points(sys.argv[3]), points(sys.argv[4])
+if a is not None and d is not None:
+    assert len(a) == len(d)
+    assert max(abs(x - y) for x, y in zip(a, d)) < 1e-6, "amg and cholmod runs end apart"
+EOF2
+  fail "amg run's summary or result: $(cat "$TMP/amg/summary.json")"
+echo "amg: ok"
