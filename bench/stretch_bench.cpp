@@ -5,7 +5,7 @@
 //
 //   stretch_bench [--sizes 16,33,67] [--models snh,filtered,fixed,corot] [--frames 12]
 //                 [--run-frames 67:1,corot@33:5] [--newton-cap 100] [--cg-cap 10000]
-//                 [--caps corot:20:1000] [--threads N] [--preconditioners block_jacobi,multigrid]
+//                 [--caps corot:20:1000] [--threads N] [--preconditioners block_jacobi,multigrid,amg]
 //                 [--newton default,paper]
 //
 // Each (size, model) runs in its own child process (this program re-executed with --child), so

@@ -29,7 +29,7 @@ namespace {
 using test::error_message;
 using test::expect_contains;
 
-const std::vector<std::string> kBuiltIn = {"jacobi", "block_jacobi", "lagged_cholesky", "multigrid"};
+const std::vector<std::string> kBuiltIn = {"jacobi", "block_jacobi", "lagged_cholesky", "multigrid", "amg"};
 
 // A random SPD matrix with 3x3 vertex blocks (B^T B + 0.1 I), with the rows and columns of the
 // flagged DOFs replaced by the identity, as Problem::hessian does for fixed DOFs.
@@ -95,15 +95,17 @@ TEST(Preconditioner, RegistryListsTheBuiltInOnes) {
   EXPECT_EQ(make_linear_solver(s)->name(), "pcg-jacobi");
   s.preconditioner = "lagged_cholesky";
   EXPECT_EQ(make_linear_solver(s)->name(), "pcg-lagged-cholesky");
+  s.preconditioner = "amg";
+  EXPECT_EQ(make_linear_solver(s)->name(), "pcg-amg");
 }
 
 TEST(Preconditioner, RegistryRejectsUnknownAndDuplicateNames) {
   const std::string unknown = error_message([] { make_preconditioner("ilu"); });
-  expect_contains(unknown, {"unknown preconditioner 'ilu'", "registered: jacobi, block_jacobi, lagged_cholesky, multigrid"});
+  expect_contains(unknown, {"unknown preconditioner 'ilu'", "registered: jacobi, block_jacobi, lagged_cholesky, multigrid, amg"});
   LinearSolverSettings s;
   s.kind = "pcg";
-  s.preconditioner = "amg";
-  expect_contains(error_message([&] { make_linear_solver(s); }), {"unknown preconditioner 'amg'", "block_jacobi"});
+  s.preconditioner = "ilu";
+  expect_contains(error_message([&] { make_linear_solver(s); }), {"unknown preconditioner 'ilu'", "block_jacobi", "amg"});
   auto factory = [] { return make_preconditioner("jacobi"); };
   expect_contains(error_message([&] { register_preconditioner("block_jacobi", "again", factory); }),
                   {"'block_jacobi' is already registered"});

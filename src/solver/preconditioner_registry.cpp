@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "sinew/core/error.hpp"
+#include "sinew/solver/amg_preconditioner.hpp"
 #include "sinew/solver/diagonal_preconditioners.hpp"
 #include "sinew/solver/lagged_cholesky_preconditioner.hpp"
 #include "sinew/solver/multigrid_preconditioner.hpp"
@@ -34,6 +35,10 @@ class Registry {
                         "geometric multigrid V-cycle on the coarsened lattice (Galerkin, Chebyshev smoothing); "
                         "block_jacobi on meshes without a lattice grid",
                         [] { return std::make_unique<MultigridPreconditioner>(); }});
+    entries_.push_back({"amg",
+                        "algebraic multigrid V-cycle (hypre BoomerAMG, systems AMG for 3 unknowns per vertex); "
+                        "any mesh",
+                        [] { return std::make_unique<AmgPreconditioner>(); }});
   }
 
   void add(const std::string& name, const std::string& description, PreconditionerFactory factory) {

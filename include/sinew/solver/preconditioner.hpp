@@ -29,7 +29,7 @@ class Preconditioner {
 using PreconditionerFactory = std::function<std::unique_ptr<Preconditioner>()>;
 
 // Adds `name` to the registry (thread-safe); a sinew::Error if the name is taken or empty.
-// The built-in ones (jacobi, block_jacobi, lagged_cholesky) are always registered.
+// The built-in ones (jacobi, block_jacobi, lagged_cholesky, multigrid, amg) are always registered.
 void register_preconditioner(const std::string& name, const std::string& description, PreconditionerFactory factory);
 // A new preconditioner of kind `name`; a sinew::Error listing the registered names if unknown.
 std::unique_ptr<Preconditioner> make_preconditioner(const std::string& name);
