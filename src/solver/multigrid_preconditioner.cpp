@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 
 #include "sinew/core/error.hpp"
 #include "sinew/solver/serial_openmp.hpp"
@@ -122,12 +123,21 @@ void MultigridPreconditioner::setup(const LinearOperator& A, const SolverContext
     coarse_analysed_ = true;
   }
   double shift = 0.0;
-  for (int attempt = 0; attempt < 6; ++attempt) {
+  coarse_indefinite_ = false;
+  // A true (unprojected) Hessian may be indefinite: then its failure is the answer, as with the
+  // direct solver. Every application returns NaN, PCG stops at once unconverged and Newton falls
+  // back to the projected Hessian (a shifted factorisation would hide the indefiniteness).
+  const int attempts = context.may_be_indefinite ? 1 : 6;
+  for (int attempt = 0; attempt < attempts; ++attempt) {
     coarse_llt_.setShift(shift);
     coarse_llt_.factorize(lower);
     if (coarse_llt_.info() == Eigen::Success) return;
     const double diag = lower.diagonal().cwiseAbs().maxCoeff();
     shift = shift == 0.0 ? 1e-10 * diag : shift * 100.0;
+  }
+  if (context.may_be_indefinite) {
+    coarse_indefinite_ = true;
+    return;
   }
   throw Error("the coarsest level could not be factorised", "preconditioner multigrid");
 }
@@ -135,6 +145,10 @@ void MultigridPreconditioner::setup(const LinearOperator& A, const SolverContext
 void MultigridPreconditioner::cycle(size_t l, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Level& L = *levels_[l];
   if (l + 1 == levels_.size()) {
+    if (coarse_indefinite_) {
+      x.setConstant(b.size(), std::numeric_limits<double>::quiet_NaN());
+      return;
+    }
     const SerialOpenMpScope serial_cholmod;
     x = coarse_llt_.solve(b);
     return;

@@ -53,6 +53,7 @@ class MultigridPreconditioner final : public Preconditioner {
   std::vector<int> fine_outer_, fine_inner_;  // the fine pattern the Galerkin products are for
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> coarse_llt_;
   bool coarse_analysed_ = false;
+  bool coarse_indefinite_ = false;  // the true Hessian's coarsest level is not positive definite
   DiagonalPreconditioner fallback_{DiagonalPreconditioner::Blocks::Vertex3};
 };
 
