@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "io_test_support.hpp"
+#include "spd_test_support.hpp"
 #include "sinew/assembly/problem.hpp"
 #include "sinew/forms/elastic_form.hpp"
 #include "sinew/material/families/corotational.hpp"
@@ -64,17 +65,7 @@ TEST(AmgPreconditioner, IsSymmetricPositiveDefiniteAndLeavesFixedDofs) {
   EXPECT_FALSE(M.used_rigid_body_modes());  // off by default
   EXPECT_GT(M.operator_complexity(), 1.0);
   EXPECT_LT(M.operator_complexity(), 4.0);
-  Eigen::VectorXd u = bar.rhs(), v(u.size()), Mu, Mv;
-  for (Eigen::Index i = 0; i < v.size(); ++i) v(i) = bar.fixed[static_cast<size_t>(i)] ? 0.0 : std::sin(1.3 * static_cast<double>(i));
-  M.apply(u, Mu);
-  M.apply(v, Mv);
-  EXPECT_NEAR(u.dot(Mv), v.dot(Mu), 1e-10 * u.norm() * Mv.norm());
-  EXPECT_GT(u.dot(Mu), 0.0);
-  EXPECT_GT(v.dot(Mv), 0.0);
-  for (Eigen::Index i = 0; i < u.size(); ++i)
-    if (bar.fixed[static_cast<size_t>(i)]) {
-      EXPECT_NEAR(Mu(i), 0.0, 1e-12 * Mu.norm()) << "fixed DOF " << i;  // no correction moves a fixed DOF
-    }
+  test::expect_symmetric_positive(M, bar.rhs(), bar.fixed, 1e-12);
   // The same preconditioner object rebuilds for another matrix, of another size.
   Bar small(Eigen::Vector3i(2, 2, 3), 0.3, /*tets=*/false);
   const LinearOperator& H2 = small.problem->hessian(small.x);

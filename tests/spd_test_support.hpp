@@ -1,7 +1,10 @@
 #pragma once
 // A random SPD matrix with 3x3 vertex blocks coupling each vertex to a few others, built as
 // B^T B + 0.1 I: the shape (not the values) of an assembled FEM Hessian, for solver tests.
+#include <gtest/gtest.h>
+
 #include <Eigen/Sparse>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -20,6 +23,25 @@ inline Eigen::SparseMatrix<double> random_spd(int vertices, unsigned seed) {
   Eigen::SparseMatrix<double> I(n, n);
   I.setIdentity();
   return Eigen::SparseMatrix<double>(B.transpose()) * B + 0.1 * I;
+}
+
+// A preconditioner M (anything with apply(r, z)) acts as a symmetric positive definite operator
+// on the free DOFs and leaves the fixed ones (mask `fixed`) at zero, up to `fixed_tolerance`
+// relative to |M u|: checked with u (the right-hand side given) and a second vector.
+template <class Preconditioner>
+void expect_symmetric_positive(Preconditioner& M, const Eigen::VectorXd& u, const std::vector<char>& fixed,
+                               double fixed_tolerance = 0.0) {
+  Eigen::VectorXd v(u.size()), Mu, Mv;
+  for (Eigen::Index i = 0; i < v.size(); ++i) v(i) = fixed[static_cast<size_t>(i)] ? 0.0 : std::sin(1.3 * static_cast<double>(i));
+  M.apply(u, Mu);
+  M.apply(v, Mv);
+  EXPECT_NEAR(u.dot(Mv), v.dot(Mu), 1e-10 * u.norm() * Mv.norm());
+  EXPECT_GT(u.dot(Mu), 0.0);
+  EXPECT_GT(v.dot(Mv), 0.0);
+  for (Eigen::Index i = 0; i < u.size(); ++i)
+    if (fixed[static_cast<size_t>(i)]) {
+      EXPECT_LE(std::abs(Mu(i)), fixed_tolerance * Mu.norm()) << "fixed DOF " << i;  // no correction moves a fixed DOF
+    }
 }
 
 }  // namespace sinew::test
