@@ -163,18 +163,8 @@ TEST(AmgPreconditioner, DrivesNewtonThroughTheSettingsOnTetrahedra) {
 TEST(AmgPreconditioner, NeedsTheAssembledMatrix) {
   Bar bar(Eigen::Vector3i(2, 2, 2), 0.3, /*tets=*/true);
   const LinearOperator& H = bar.problem->hessian(bar.x);
-  class MatrixFree final : public LinearOperator {
-   public:
-    explicit MatrixFree(const LinearOperator& A) : A_(A) {}
-    Eigen::Index rows() const override { return A_.rows(); }
-    void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override { A_.apply(x, y); }
-    Mat3 diagonal_block(Eigen::Index v) const override { return A_.diagonal_block(v); }
-
-   private:
-    const LinearOperator& A_;
-  };
   AmgPreconditioner M;
-  expect_contains(error_message([&] { M.setup(MatrixFree(H), bar.context()); }), {"amg", "assembled matrix"});
+  expect_contains(error_message([&] { M.setup(test::WithoutMatrix(H), bar.context()); }), {"amg", "assembled matrix"});
   Eigen::VectorXd z;
   expect_contains(error_message([&] { M.apply(bar.rhs(), z); }), {"amg", "before setup"});
 }

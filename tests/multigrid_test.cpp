@@ -328,17 +328,7 @@ TEST(MultigridPreconditioner, IsBlockJacobiWithoutALatticeAndNeedsTheMatrix) {
   EXPECT_EQ(M.levels(), 1);
   EXPECT_LE((z1 - z2).norm(), 1e-15 * z2.norm());
   // With a lattice it needs the assembled matrix.
-  class MatrixFree final : public LinearOperator {
-   public:
-    explicit MatrixFree(const LinearOperator& A) : A_(A) {}
-    Eigen::Index rows() const override { return A_.rows(); }
-    void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override { A_.apply(x, y); }
-    Mat3 diagonal_block(Eigen::Index v) const override { return A_.diagonal_block(v); }
-
-   private:
-    const LinearOperator& A_;
-  };
-  expect_contains(error_message([&] { M.setup(MatrixFree(H), bar.context()); }), {"multigrid", "assembled matrix"});
+  expect_contains(error_message([&] { M.setup(test::WithoutMatrix(H), bar.context()); }), {"multigrid", "assembled matrix"});
 }
 
 }  // namespace

@@ -8,7 +8,22 @@
 #include <random>
 #include <vector>
 
+#include "sinew/linalg/linear_operator.hpp"
+
 namespace sinew::test {
+
+// An operator seen without its matrix (matrix() is null): what a matrix-free Hessian looks like
+// to a preconditioner that needs the assembled one.
+class WithoutMatrix final : public LinearOperator {
+ public:
+  explicit WithoutMatrix(const LinearOperator& A) : A_(A) {}
+  Eigen::Index rows() const override { return A_.rows(); }
+  void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override { A_.apply(x, y); }
+  Mat3 diagonal_block(Eigen::Index v) const override { return A_.diagonal_block(v); }
+
+ private:
+  const LinearOperator& A_;
+};
 
 inline Eigen::SparseMatrix<double> random_spd(int vertices, unsigned seed) {
   std::mt19937 rng(seed);
