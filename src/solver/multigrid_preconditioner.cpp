@@ -23,7 +23,11 @@ struct MultigridPreconditioner::Level {
   Eigen::VectorXd residual, coarse_b, coarse_x;
 };
 
-MultigridPreconditioner::MultigridPreconditioner(MultigridSettings settings) : settings_(settings) {}
+MultigridPreconditioner::MultigridPreconditioner(MultigridSettings settings) : settings_(settings) {
+  // As in the direct solver: a failed attempt is reported through info(), never printed (CHOLMOD
+  // writes its warnings to stdout, into a run's machine-readable output).
+  coarse_llt_.cholmod().print = 0;
+}
 MultigridPreconditioner::~MultigridPreconditioner() = default;
 
 std::vector<Eigen::Index> MultigridPreconditioner::level_dofs() const {
