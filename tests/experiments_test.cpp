@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <fmt/format.h>
 #include <filesystem>
+#include <functional>
 
 #include "sinew/element/discretization.hpp"
 #include "sinew/forms/elastic_form.hpp"
@@ -79,6 +80,27 @@ TEST(Experiments, PaperSizeStretchExampleHasThePapersElementCount) {
   EXPECT_NEAR(static_cast<double>(3 * mesh.num_vertices()), static_cast<double>(kPaperStretchDofs), 1e-3 * kPaperStretchDofs);
 }
 
+// The smallest eigenvalue of the unprojected Hessian of the elastic energy at x over the DOFs of
+// the vertices that are not pinned: positive at a strict local minimum, negative at a saddle.
+double smallest_free_eigenvalue(const VolumeMesh& mesh, const std::string& family, double E, double nu,
+                                const Eigen::VectorXd& x, const std::function<bool(Eigen::Index vertex)>& pinned) {
+  auto disc = std::make_shared<Discretization>(mesh);
+  MaterialSpec m;
+  m.family = family;
+  m.target = YoungPoisson{E, nu};
+  auto form = std::make_shared<ElasticForm>(disc, build_material(m), Projection::None);
+  Problem problem(mesh.num_vertices());
+  problem.add_form(form);
+  const Eigen::MatrixXd H = Eigen::MatrixXd(*problem.hessian(x).matrix());
+  std::vector<Eigen::Index> free;
+  for (Eigen::Index i = 0; i < H.rows(); ++i)
+    if (!pinned(i / 3)) free.push_back(i);
+  Eigen::MatrixXd Hf(free.size(), free.size());
+  for (size_t a = 0; a < free.size(); ++a)
+    for (size_t b = 0; b < free.size(); ++b) Hf(a, b) = H(free[a], free[b]);
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Hf, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+}
+
 // ---- stretch ----------------------------------------------------------------------------------
 
 // The stretch on a small cylinder: 12 frames of 0.2 to 3.4x, of which the first `run_frames` run.
@@ -126,13 +148,27 @@ TEST(Experiments, StretchCorotationalLosesMostOfItsVolume) {
 }
 
 // Both keep their volume to a few percent (paper: +4.9 % and +4.5 %); on a coarser cylinder to
-// keep the default suite fast.
+// keep the default suite fast. Fixed co-rotational runs to 3.0x only: there the stretched cylinder
+// is still a strict minimum (smallest free Hessian eigenvalue ~121), but by 3.2x it is a saddle
+// (two lateral modes at ~-430, ~-1,050 at 3.4x), where a descent method slides off slowly and
+// whether a solve meets the tolerance first depends on round-off (docs/experiments.md).
 TEST(Experiments, StretchFixedCorotationalAndFilteredNeoHookeanKeepVolume) {
-  for (const std::string family : {"fixed_corotational", "neo_hookean_filtered"}) {
-    const ExperimentRun run = small_stretch(family, 10);  // 1,040 hexahedra
-    EXPECT_EQ(run.frames_converged(), static_cast<int>(run.frames.size())) << family;
+  for (const auto& [family, frames] : {std::pair<std::string, int>{"fixed_corotational", 10}, {"neo_hookean_filtered", 12}}) {
+    const ExperimentRun run = small_stretch(family, 10, frames);  // 1,040 hexahedra
+    EXPECT_EQ(run.frames_converged(), frames) << family;
     EXPECT_GT(run.volume_change_percent(), 0.5) << family;
     EXPECT_LT(run.volume_change_percent(), 10.0) << family;
+    if (family != "fixed_corotational") continue;
+    StretchConfig c;
+    c.family = family;
+    c.diameter_cells = 10;
+    const VolumeMesh mesh = build_scene_mesh(stretch_scene(c));
+    const double z0 = mesh.vertices.col(2).minCoeff(), z1 = mesh.vertices.col(2).maxCoeff();
+    const double lambda_min = smallest_free_eigenvalue(mesh, family, c.E, c.nu, run.x, [&](Eigen::Index v) {
+      return mesh.vertices(v, 2) <= z0 || mesh.vertices(v, 2) >= z1;  // the end faces move with the grips
+    });
+    std::printf("stretch %s at 3.0x: smallest free Hessian eigenvalue %.4g\n", family.c_str(), lambda_min);
+    EXPECT_GT(lambda_min, 0.0) << family << " at 3.0x is not a strict minimum";
   }
 }
 
@@ -179,21 +215,9 @@ TEST(Experiments, ScrambleCornersSpanATetrahedron) {
 // state (the four pinned corners removed).
 double smallest_free_eigenvalue(const ScrambleConfig& c, const ScrambleResult& r) {
   const VolumeMesh mesh = box_lattice(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), Eigen::Vector3i::Constant(c.cells));
-  auto disc = std::make_shared<Discretization>(mesh);
-  MaterialSpec m;
-  m.family = c.family;
-  m.target = YoungPoisson{c.E, c.nu};
-  auto form = std::make_shared<ElasticForm>(disc, build_material(m), Projection::None);
-  Problem problem(mesh.num_vertices());
-  problem.add_form(form);
-  const Eigen::MatrixXd H = Eigen::MatrixXd(*problem.hessian(r.x).matrix());
-  std::vector<Eigen::Index> free;
-  for (Eigen::Index i = 0; i < H.rows(); ++i)
-    if (std::find(r.pinned.begin(), r.pinned.end(), static_cast<int>(i / 3)) == r.pinned.end()) free.push_back(i);
-  Eigen::MatrixXd Hf(free.size(), free.size());
-  for (size_t a = 0; a < free.size(); ++a)
-    for (size_t b = 0; b < free.size(); ++b) Hf(a, b) = H(free[a], free[b]);
-  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Hf, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  return smallest_free_eigenvalue(mesh, c.family, c.E, c.nu, r.x, [&](Eigen::Index v) {
+    return std::find(r.pinned.begin(), r.pinned.end(), static_cast<int>(v)) != r.pinned.end();
+  });
 }
 
 // Elements with det F <= 0 at one of their eight corner nodes, where the 2x2x2 Gauss rule does
