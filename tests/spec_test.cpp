@@ -184,10 +184,11 @@ TEST(SpecJson, EveryErrorNamesItsPath) {
       {json::parse(R"({"E": 1, "nu": 0.3, "mix": "linear_corotational"})"),
        "scene.json: /materials/0/mix"},
   };
-  for (const auto& [j, path] : cases) {
+  for (const auto& item : cases) {
+    const json& j = item.first;  // not a structured binding: clang 14 cannot capture one
     SCOPED_TRACE(j.dump());
     const Caught c = error_of([&] { material_spec_from_json(j, "scene.json: /materials/0"); });
-    EXPECT_EQ(c.context, path) << c.message;
+    EXPECT_EQ(c.context, item.second) << c.message;
     EXPECT_FALSE(c.message.empty());
   }
 }
