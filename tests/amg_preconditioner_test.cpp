@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "elastic_bar_support.hpp"
 #include "io_test_support.hpp"
 #include "spd_test_support.hpp"
 #include "sinew/assembly/problem.hpp"
@@ -26,34 +27,9 @@ namespace {
 using test::error_message;
 using test::expect_contains;
 
-// A bar of cells(0) x cells(1) x cells(2) unit cells (hexahedra, or each split into six
-// tetrahedra), linear co-rotational at rest with Poisson ratio nu, bottom face pinned.
-struct Bar {
-  std::shared_ptr<Discretization> disc;
-  std::unique_ptr<Problem> problem;
-  Eigen::VectorXd x;
-  std::vector<char> fixed;
-  Bar(const Eigen::Vector3i& cells, double nu, bool tets) {
-    VolumeMesh mesh = box_lattice(Eigen::Vector3d::Zero(), cells.cast<double>(), cells);
-    if (tets) mesh = tetrahedralize_hexes(mesh);
-    disc = std::make_shared<Discretization>(std::move(mesh));
-    problem = std::make_unique<Problem>(disc->mesh().num_vertices());
-    const double E = 1e3, lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
-    problem->add_form(std::make_shared<ElasticForm>(disc, std::make_shared<LinearCorotational>(lambda, mu)));
-    problem->set_discretization(disc);
-    x = disc->mesh().rest_positions();
-    fixed.assign(static_cast<size_t>(x.size()), 0);
-    for (Eigen::Index v = 0; v < disc->mesh().num_vertices(); ++v)
-      if (disc->mesh().vertices(v, 2) <= 0.0)
-        for (int i = 0; i < 3; ++i) fixed[static_cast<size_t>(3 * v + i)] = 1;
-    problem->set_fixed(fixed);
-  }
-  SolverContext context() const { return {disc, problem->fixed()}; }
-  Eigen::VectorXd rhs() const {
-    Eigen::VectorXd b(x.size());
-    for (Eigen::Index i = 0; i < b.size(); ++i) b(i) = fixed[static_cast<size_t>(i)] ? 0.0 : std::cos(0.37 * static_cast<double>(i));
-    return b;
-  }
+// The bottom face pinned (tests/elastic_bar_support.hpp).
+struct Bar : test::ElasticBar {
+  Bar(const Eigen::Vector3i& cells, double nu, bool tets) : ElasticBar(cells, nu, tets, 0.0) {}
 };
 
 TEST(AmgPreconditioner, IsSymmetricPositiveDefiniteAndLeavesFixedDofs) {

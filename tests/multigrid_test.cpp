@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <map>
 
+#include "elastic_bar_support.hpp"
 #include "io_test_support.hpp"
 #include "spd_test_support.hpp"
 #include "sinew/assembly/problem.hpp"
@@ -157,34 +158,14 @@ TEST(LatticeHierarchy, RejectsMeshesWithoutALattice) {
   expect_contains(error_message([&] { lattice_level(m); }), {"multigrid", "no lattice grid"});
 }
 
-// The Hessian of a linear co-rotational lattice (E = 1000) at rest, the vertices up to
-// `pinned_height` pinned, one DOF of the top face fixed on its own (a partly fixed vertex).
-struct Bar {
-  std::shared_ptr<Discretization> disc;
-  std::unique_ptr<Problem> problem;
-  Eigen::VectorXd x;
-  std::vector<char> fixed;
-  Bar(const Eigen::Vector3i& cells, double nu, double pinned_height = 0.0) {
-    disc = std::make_shared<Discretization>(box_lattice(Eigen::Vector3d::Zero(), cells.cast<double>(), cells));
-    problem = std::make_unique<Problem>(disc->mesh().num_vertices());
-    const double E = 1e3, lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
-    problem->add_form(std::make_shared<ElasticForm>(disc, std::make_shared<LinearCorotational>(lambda, mu)));
-    problem->set_discretization(disc);
-    x = disc->mesh().rest_positions();
-    fixed.assign(static_cast<size_t>(x.size()), 0);
-    for (Eigen::Index v = 0; v < disc->mesh().num_vertices(); ++v)
-      if (disc->mesh().vertices(v, 2) <= pinned_height)
-        for (int i = 0; i < 3; ++i) fixed[static_cast<size_t>(3 * v + i)] = 1;
+// The Hessian of a linear co-rotational hexahedral lattice at rest (tests/elastic_bar_support.hpp),
+// the vertices up to `pinned_height` pinned, one DOF of the top face fixed on its own (a partly
+// fixed vertex).
+struct Bar : test::ElasticBar {
+  Bar(const Eigen::Vector3i& cells, double nu, double pinned_height = 0.0) : ElasticBar(cells, nu, false, pinned_height) {
     const std::vector<int> top =
         select_vertices(disc->mesh().vertices, PlaneSelector{{0, 0, static_cast<double>(cells(2))}, {0, 0, 1}}, "top");
-    fixed[static_cast<size_t>(3 * top.front() + 1)] = 1;
-    problem->set_fixed(fixed);
-  }
-  SolverContext context() const { return {disc, problem->fixed()}; }
-  Eigen::VectorXd rhs() const {
-    Eigen::VectorXd b(x.size());
-    for (Eigen::Index i = 0; i < b.size(); ++i) b(i) = fixed[static_cast<size_t>(i)] ? 0.0 : std::cos(0.37 * static_cast<double>(i));
-    return b;
+    fix(3 * top.front() + 1);
   }
 };
 
