@@ -4,7 +4,9 @@
 #include <random>
 #include <set>
 
+#include "sinew/assembly/problem.hpp"
 #include "sinew/element/discretization.hpp"
+#include "sinew/element/element_rule.hpp"
 #include "sinew/forms/elastic_form.hpp"
 #include "sinew/material/families/corotational.hpp"
 #include "sinew/mesh/lattice.hpp"
@@ -123,6 +125,82 @@ TEST_P(MeshDerivatives, PatchTestReproducesAffineField) {
   ASSERT_TRUE(r.converged) << r.failure;
   for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v)
     EXPECT_LE((x.segment<3>(3 * v) - (A * mesh.vertices.row(v).transpose() + t)).norm(), 1e-10);
+}
+
+TEST_P(MeshDerivatives, EqualRestShapesShareGradients) {
+  // A regular lattice has one hexahedron shape (and a few tetrahedron shapes); moving one
+  // vertex gives its elements shapes of their own. Every element's gradients and weights must
+  // be its own, computed from scratch.
+  VolumeMesh mesh = box_lattice(Eigen::Vector3d(0.3, -0.2, 0.1), Eigen::Vector3d(1.3, 0.8, 1.6), Eigen::Vector3i(3, 3, 3));
+  if (GetParam() == ElementKind::Tet4) mesh = tetrahedralize_hexes(mesh);
+  const Discretization regular(mesh);
+  EXPECT_LE(regular.num_rest_shapes(), GetParam() == ElementKind::Hex8 ? 1 : 12);
+  mesh.vertices(21, 1) += 0.05;  // an interior vertex
+  const Discretization moved(mesh);
+  EXPECT_GT(moved.num_rest_shapes(), regular.num_rest_shapes());
+  EXPECT_LT(moved.num_rest_shapes(), moved.num_elements());
+  const QuadratureRule& rule = quadrature_rule(mesh.kind);
+  for (Eigen::Index e = 0; e < moved.num_elements(); ++e) {
+    Eigen::MatrixX3d X(moved.nodes(), 3);
+    for (int a = 0; a < moved.nodes(); ++a) X.row(a) = mesh.vertices.row(mesh.elements(e, a));
+    for (int q = 0; q < moved.quadrature_points(); ++q) {
+      const Mat3 J = X.transpose() * rule.dN_dxi[static_cast<size_t>(q)];
+      EXPECT_LE((moved.gradients(e, q) - rule.dN_dxi[static_cast<size_t>(q)] * J.inverse()).norm(), 1e-12);
+      EXPECT_NEAR(moved.weight(e, q), rule.weights[static_cast<size_t>(q)] * J.determinant(), 1e-14);
+    }
+  }
+}
+
+TEST_P(MeshDerivatives, AssembledHessianIsTheSumOfElementHessians) {
+  // The assembly loop (fixed-size kernels, scatter map, upper blocks mirrored) against the
+  // per-element interface, with the projection on, at a deformed state with inverted elements.
+  auto disc = std::make_shared<Discretization>(small_mesh(GetParam()));
+  const ElasticForm form(disc, test_material(), Projection::Clamp);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  Eigen::VectorXd x = disc->mesh().rest_positions();
+  for (Eigen::Index i = 0; i < x.size(); ++i) x(i) += u(rng);
+  std::vector<std::vector<int>> cliques;
+  form.couplings(cliques);
+  BlockHessian H(disc->mesh().num_vertices(), cliques);
+  form.add_hessian(x, H);
+  form.add_hessian(x, H);  // a second pass reuses the scatter map
+  const Eigen::MatrixXd K(H.matrix());
+  Eigen::MatrixXd reference = Eigen::MatrixXd::Zero(x.size(), x.size());
+  const auto& elements = disc->mesh().elements;
+  for (Eigen::Index e = 0; e < disc->num_elements(); ++e) {
+    const Eigen::MatrixXd Ke = form.element_hessian(e, x);
+    for (int a = 0; a < disc->nodes(); ++a)
+      for (int b = 0; b < disc->nodes(); ++b)
+        reference.block<3, 3>(3 * elements(e, a), 3 * elements(e, b)) += 2.0 * Ke.block<3, 3>(3 * a, 3 * b);
+  }
+  EXPECT_LE((K - reference).norm(), 1e-12 * reference.norm());
+  EXPECT_EQ((K - K.transpose()).norm(), 0.0);  // upper blocks mirrored: exactly symmetric
+}
+
+TEST_P(MeshDerivatives, FixedDofsGetIdentityRowsAndColumns) {
+  auto disc = std::make_shared<Discretization>(small_mesh(GetParam()));
+  auto form = std::make_shared<ElasticForm>(disc, test_material());
+  Problem problem(disc->mesh().num_vertices());
+  problem.add_form(form);
+  std::vector<char> fixed(static_cast<size_t>(problem.num_dofs()), 0);
+  for (size_t i = 0; i < fixed.size(); i += 7) fixed[i] = 1;  // single components of some vertices
+  fixed[3] = fixed[4] = fixed[5] = 1;                          // all of one vertex
+  problem.set_fixed(fixed);
+  Eigen::VectorXd x = disc->mesh().rest_positions() * 1.1;
+  const Eigen::MatrixXd K(*problem.hessian(x).matrix());
+  std::vector<std::vector<int>> cliques;
+  form->couplings(cliques);
+  BlockHessian H(disc->mesh().num_vertices(), cliques);
+  form->add_hessian(x, H);
+  Eigen::MatrixXd expected(H.matrix());
+  for (Eigen::Index i = 0; i < expected.rows(); ++i)
+    if (fixed[static_cast<size_t>(i)]) {
+      expected.row(i).setZero();
+      expected.col(i).setZero();
+      expected(i, i) = 1.0;
+    }
+  EXPECT_EQ((K - expected).norm(), 0.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinds, MeshDerivatives, ::testing::Values(ElementKind::Hex8, ElementKind::Tet4),

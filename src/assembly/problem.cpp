@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <tbb/parallel_for.h>
 
 #include "sinew/core/error.hpp"
 
@@ -107,32 +106,56 @@ bool Problem::refresh_forms(const Eigen::VectorXd& x, bool start_of_solve) {
   return changed;
 }
 
+void Problem::set_matrix_free(bool on) {
+  if (on == matrix_free_) return;
+  matrix_free_ = on;
+  hessian_.reset();  // the matrix-free forms leave the pattern
+  matrix_free_operator_.reset();
+}
+
+std::size_t Problem::hessian_bytes() const {
+  std::size_t bytes = 0;
+  if (hessian_) {
+    const auto& A = hessian_->matrix();
+    bytes += static_cast<std::size_t>(A.nonZeros()) * (sizeof(double) + sizeof(int)) +
+             static_cast<std::size_t>(A.outerSize() + 1) * sizeof(int);
+  }
+  if (matrix_free_)
+    for (const auto& f : forms_)
+      if (f->supports_hessian_product()) bytes += f->hessian_product_bytes();
+  return bytes;
+}
+
 void Problem::ensure_pattern() {
   if (hessian_) return;
   std::vector<std::vector<int>> cliques;
-  for (const auto& f : forms_) f->couplings(cliques);
+  for (const auto& f : forms_)
+    if (!(matrix_free_ && f->supports_hessian_product())) f->couplings(cliques);
   hessian_ = std::make_unique<BlockHessian>(num_vertices_, cliques);
-  hessian_operator_ = std::make_unique<SparseOperator>(hessian_->matrix());
+  hessian_operator_ = std::make_unique<BlockHessianOperator>(*hessian_);
 }
 
 const LinearOperator& Problem::hessian(const Eigen::VectorXd& x, bool exact) {
   ensure_pattern();
   hessian_->set_zero();
   for (const auto& f : forms_) f->linearize_at(x);  // non-conservative loads restart their work path here
+  std::vector<const Form*> products;
   for (const auto& f : forms_) {
-    if (exact)
+    if (matrix_free_ && f->supports_hessian_product()) {
+      f->prepare_hessian_product(x, exact);
+      products.push_back(f.get());
+    } else if (exact) {
       f->add_exact_hessian(x, *hessian_);
-    else
+    } else {
       f->add_hessian(x, *hessian_);
+    }
+  }
+  if (matrix_free_) {
+    matrix_free_operator_ = std::make_unique<MatrixFreeHessian>(*this, *hessian_, std::move(products));
+    return *matrix_free_operator_;
   }
   if (!frame_of_.empty()) hessian_->change_basis(frame_of_);
-  Eigen::SparseMatrix<double>& A = hessian_->matrix();
-  // Identity rows and columns at fixed DOFs (keeps symmetry and the pattern).
-  tbb::parallel_for(Eigen::Index(0), A.outerSize(), [&](Eigen::Index c) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
-      if (fixed_[it.row()] || fixed_[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-    }
-  });
+  hessian_->set_identity_rows(fixed_);  // keeps symmetry and the pattern
   return *hessian_operator_;
 }
 

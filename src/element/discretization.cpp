@@ -2,6 +2,8 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
+#include <unordered_map>
 
 #include "sinew/element/element_rule.hpp"
 #include "sinew/element/mesh_validation.hpp"
@@ -31,6 +33,23 @@ std::vector<std::vector<Eigen::Index>> color_elements(const VolumeMesh& mesh) {
   return groups;
 }
 
+// Hash of a key of rounded edge coordinates.
+struct KeyHash {
+  size_t operator()(const std::vector<long long>& key) const {
+    size_t h = key.size();
+    for (long long v : key) h ^= std::hash<long long>()(v) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+    return h;
+  }
+};
+
+// Edge vectors X_a - X_0 (a = 1..n-1) of element e, as rows.
+Eigen::MatrixX3d edge_vectors(const VolumeMesh& mesh, Eigen::Index e) {
+  const Eigen::Index n = mesh.elements.cols();
+  Eigen::MatrixX3d E(n - 1, 3);
+  for (Eigen::Index a = 1; a < n; ++a) E.row(a - 1) = mesh.vertices.row(mesh.elements(e, a)) - mesh.vertices.row(mesh.elements(e, 0));
+  return E;
+}
+
 }  // namespace
 
 Discretization::Discretization(VolumeMesh mesh, const std::string& source) : mesh_(std::move(mesh)) {
@@ -38,9 +57,40 @@ Discretization::Discretization(VolumeMesh mesh, const std::string& source) : mes
   const QuadratureRule& rule = quadrature_rule(mesh_.kind);
   nodes_ = nodes_per_element(mesh_.kind);
   qpoints_ = static_cast<int>(rule.weights.size());
-  dN_dX_.reserve(mesh_.num_elements() * qpoints_);
-  weight_.reserve(mesh_.num_elements() * qpoints_);
+  // Rest shapes are grouped by their edge vectors rounded to a grid of 1e-9 of the mesh's
+  // extent, and an element joins a group only if its edges agree with the group's first
+  // element to 1e-12 of its own size (rounding can split equal shapes, never merge unequal ones).
+  const double extent = mesh_.num_vertices() > 0
+                            ? (mesh_.vertices.colwise().maxCoeff() - mesh_.vertices.colwise().minCoeff()).norm()
+                            : 1.0;
+  const double grid = 1e-9 * (extent > 0.0 ? extent : 1.0);
+  std::unordered_map<std::vector<long long>, std::vector<int>, KeyHash> groups;
+  std::vector<Eigen::Index> representative;  // first element of each rest shape
+  shape_.resize(static_cast<size_t>(mesh_.num_elements()));
+  std::vector<long long> key(static_cast<size_t>(3 * (nodes_ - 1)));
   for (Eigen::Index e = 0; e < mesh_.num_elements(); ++e) {
+    const Eigen::MatrixX3d E = edge_vectors(mesh_, e);
+    for (Eigen::Index a = 0; a < E.rows(); ++a)
+      for (int c = 0; c < 3; ++c) key[static_cast<size_t>(3 * a + c)] = std::llround(E(a, c) / grid);
+    auto& candidates = groups[key];
+    int found = -1;
+    for (int s : candidates) {
+      const Eigen::MatrixX3d R = edge_vectors(mesh_, representative[static_cast<size_t>(s)]);
+      if ((R - E).cwiseAbs().maxCoeff() <= 1e-12 * E.cwiseAbs().maxCoeff()) {
+        found = s;
+        break;
+      }
+    }
+    if (found < 0) {
+      found = static_cast<int>(representative.size());
+      representative.push_back(e);
+      candidates.push_back(found);
+    }
+    shape_[static_cast<size_t>(e)] = found;
+  }
+  dN_dX_.reserve(representative.size() * static_cast<size_t>(qpoints_));
+  weight_.reserve(representative.size() * static_cast<size_t>(qpoints_));
+  for (const Eigen::Index e : representative) {
     Eigen::MatrixX3d X(nodes_, 3);
     for (int a = 0; a < nodes_; ++a) X.row(a) = mesh_.vertices.row(mesh_.elements(e, a));
     for (int q = 0; q < qpoints_; ++q) {

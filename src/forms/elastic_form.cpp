@@ -1,29 +1,58 @@
 #include "sinew/forms/elastic_form.hpp"
 
 #include <atomic>
+#include <cstdint>
+#include <type_traits>
 #include <limits>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include "sinew/core/error.hpp"
+#include "sinew/element/fixed_element.hpp"
 
 namespace sinew {
+namespace {
+
+template <int N>
+auto element_positions(const Discretization& d, Eigen::Index e, const Eigen::VectorXd& x) {
+  return fixed_element::positions<N>(d, e, x);
+}
+template <int N>
+auto element_gradients(const Discretization& d, Eigen::Index e, int q) {
+  return fixed_element::gradients<N>(d, e, q);
+}
+
+// Runs body(std::integral_constant<int, N>) for the fixed node counts (8, 4), else with
+// Eigen::Dynamic.
+template <class Body>
+auto with_nodes(int nodes, const Body& body) {
+  if (nodes == 8) return body(std::integral_constant<int, 8>());
+  if (nodes == 4) return body(std::integral_constant<int, 4>());
+  return body(std::integral_constant<int, Eigen::Dynamic>());
+}
+
+}  // namespace
 
 ElasticForm::ElasticForm(std::shared_ptr<const Discretization> disc,
                          std::shared_ptr<const Material> material, Projection projection)
     : disc_(std::move(disc)), material_(std::move(material)), projection_(projection) {}
 
 double ElasticForm::value(const Eigen::VectorXd& x) const {
+  return with_nodes(disc_->nodes(), [&](auto nodes) { return value_fixed<decltype(nodes)::value>(x); });
+}
+
+template <int N>
+double ElasticForm::value_fixed(const Eigen::VectorXd& x) const {
   const Discretization& d = *disc_;
   // Deterministic reduction: the same x gives bit-identical energies, which the line search needs.
   return tbb::parallel_deterministic_reduce(
       tbb::blocked_range<Eigen::Index>(0, d.num_elements(), 256), 0.0,
       [&](const tbb::blocked_range<Eigen::Index>& r, double acc) {
         for (Eigen::Index e = r.begin(); e != r.end(); ++e) {
-          const Eigen::Matrix3Xd xe = d.element_positions(e, x);
+          const auto xe = element_positions<N>(d, e, x);
           for (int q = 0; q < d.quadrature_points(); ++q) {
-            const Mat3 F = xe * d.gradients(e, q);
+            const Mat3 F = xe * element_gradients<N>(d, e, q);
             acc += material_->in_domain(F) ? d.weight(e, q) * material_->psi(F)
                                            : std::numeric_limits<double>::infinity();
           }
@@ -34,17 +63,25 @@ double ElasticForm::value(const Eigen::VectorXd& x) const {
 }
 
 void ElasticForm::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  with_nodes(disc_->nodes(), [&](auto nodes) {
+    add_gradient_fixed<decltype(nodes)::value>(x, g);
+    return 0;
+  });
+}
+
+template <int N>
+void ElasticForm::add_gradient_fixed(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;
   for (const auto& group : d.color_groups()) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, group.size(), 64), [&](const auto& r) {
       for (size_t idx = r.begin(); idx != r.end(); ++idx) {
         const Eigen::Index e = group[idx];
-        const Eigen::Matrix3Xd xe = d.element_positions(e, x);
-        Eigen::Matrix3Xd ge = Eigen::Matrix3Xd::Zero(3, d.nodes());
+        const auto xe = element_positions<N>(d, e, x);
+        Eigen::Matrix<double, 3, N> ge = Eigen::Matrix<double, 3, N>::Zero(3, d.nodes());
         for (int q = 0; q < d.quadrature_points(); ++q) {
-          const Eigen::MatrixX3d& D = d.gradients(e, q);
-          ge += d.weight(e, q) * material_->pk1(xe * D) * D.transpose();
+          const auto D = element_gradients<N>(d, e, q);
+          ge.noalias() += d.weight(e, q) * material_->pk1(xe * D) * D.transpose();
         }
         for (int a = 0; a < d.nodes(); ++a) g.segment<3>(3 * elements(e, a)) += ge.col(a);
       }
@@ -59,6 +96,8 @@ void ElasticForm::add_exact_hessian(const Eigen::VectorXd& x, BlockHessian& H) c
 }
 
 void ElasticForm::add_hessian_projected(const Eigen::VectorXd& x, BlockHessian& H, Projection projection) const {
+  if (disc_->nodes() == 8) return add_hessian_fixed<8>(x, H, projection);
+  if (disc_->nodes() == 4) return add_hessian_fixed<4>(x, H, projection);
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;
   const int n = d.nodes();
@@ -81,6 +120,89 @@ void ElasticForm::add_hessian_projected(const Eigen::VectorXd& x, BlockHessian& 
       }
     });
   }
+}
+
+template <int N, class Body>
+void ElasticForm::for_each_element_stiffness(const Eigen::VectorXd& x, Projection projection, const Body& body) const {
+  const Discretization& d = *disc_;
+  for (const auto& group : d.color_groups()) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, group.size(), 32), [&](const auto& r) {
+      fixed_element::SymmetricBlocks<N> K;
+      for (size_t idx = r.begin(); idx != r.end(); ++idx) {
+        const Eigen::Index e = group[idx];
+        const auto xe = element_positions<N>(d, e, x);
+        K.set_zero();
+        for (int q = 0; q < d.quadrature_points(); ++q) {
+          const auto D = element_gradients<N>(d, e, q);
+          fixed_element::add_stiffness<N>(D, material_->projected_hessian(xe * D, projection), d.weight(e, q), K);
+        }
+        K.symmetrize_diagonal();  // the assembled matrix is then exactly symmetric
+        body(e, K);
+      }
+    });
+  }
+}
+
+template <int N>
+void ElasticForm::add_hessian_fixed(const Eigen::VectorXd& x, BlockHessian& H, Projection projection) const {
+  const auto& elements = disc_->mesh().elements;
+  const std::vector<std::uint16_t>& slots = scatter_map(H);
+  for_each_element_stiffness<N>(x, projection, [&](Eigen::Index e, const fixed_element::SymmetricBlocks<N>& K) {
+    // Upper blocks only; the lower ones are their transposes (K is symmetric). Elements of
+    // one colour group share no vertex, so no two tasks write the same block.
+    const std::uint16_t* slot = slots.data() + static_cast<size_t>(e) * N * N;
+    for (int a = 0; a < N; ++a) {
+      const int va = elements(e, a);
+      H.add_block_at_slot(va, slot[a * N + a], K.K[a][a]);
+      for (int b = a + 1; b < N; ++b)
+        H.add_symmetric_pair(va, elements(e, b), slot[a * N + b], slot[b * N + a], K.K[a][b]);
+    }
+  });
+}
+
+void ElasticForm::prepare_hessian_product(const Eigen::VectorXd& x, bool exact) {
+  const Projection projection = exact ? Projection::None : projection_;
+  if (disc_->nodes() == 8) return prepare_hessian_product_fixed<8>(x, projection);
+  if (disc_->nodes() == 4) return prepare_hessian_product_fixed<4>(x, projection);
+  throw Error("the matrix-free Hessian supports hexahedra and tetrahedra", "solver.linear.hessian");
+}
+
+template <int N>
+void ElasticForm::prepare_hessian_product_fixed(const Eigen::VectorXd& x, Projection projection) {
+  if (element_matrices_.empty()) element_matrices_.resize(*disc_);
+  for_each_element_stiffness<N>(x, projection, [&](Eigen::Index e, const fixed_element::SymmetricBlocks<N>& K) {
+    for (int a = 0; a < N; ++a)
+      for (int b = a; b < N; ++b) element_matrices_.store(e, a, b, K.K[a][b]);
+  });
+}
+
+void ElasticForm::add_hessian_product(const Eigen::VectorXd& p, Eigen::VectorXd& y) const {
+  element_matrices_.add_product(p, y);
+}
+
+void ElasticForm::add_hessian_diagonal(std::vector<Mat3>& diagonal) const { element_matrices_.add_diagonal(diagonal); }
+
+const std::vector<std::uint16_t>& ElasticForm::scatter_map(const BlockHessian& H) const {
+  std::lock_guard<std::mutex> lock(scatter_mutex_);
+  if (scatter_pattern_ == H.pattern_id()) return scatter_slots_;
+  const Discretization& d = *disc_;
+  const auto& elements = d.mesh().elements;
+  const int n = d.nodes();
+  if (H.max_slots() > std::numeric_limits<std::uint16_t>::max())
+    throw Error("a vertex is coupled to more than 65,535 others; the element scatter map cannot index it",
+                "assembly");
+  scatter_slots_.resize(static_cast<size_t>(d.num_elements()) * n * n);
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, d.num_elements(), 1024), [&](const auto& r) {
+    for (Eigen::Index e = r.begin(); e != r.end(); ++e)
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+          const int k = H.slot(elements(e, a), elements(e, b));
+          if (k < 0) throw Error("an element's vertex pair is not in the Hessian pattern", "assembly");
+          scatter_slots_[(static_cast<size_t>(e) * n + a) * n + b] = static_cast<std::uint16_t>(k);
+        }
+  });
+  scatter_pattern_ = H.pattern_id();
+  return scatter_slots_;
 }
 
 double ElasticForm::element_value(Eigen::Index e, const Eigen::VectorXd& x) const {

@@ -1,7 +1,10 @@
 #include "sinew/linalg/block_hessian.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "sinew/core/error.hpp"
 
@@ -35,6 +38,26 @@ BlockHessian::BlockHessian(Eigen::Index num_vertices, const std::vector<std::vec
   }
   outer[n] = static_cast<int>(pos);
   set_zero();
+  static std::atomic<std::uint64_t> next_id{1};
+  pattern_id_ = next_id++;
+}
+
+int BlockHessian::max_slots() const {
+  size_t m = 0;
+  for (const auto& r : rows_) m = std::max(m, r.size());
+  return static_cast<int>(m);
+}
+
+void BlockHessian::add_symmetric_pair(int a, int b, int k_ab, int k_ba, const Mat3& M) {
+  double* values = A_.valuePtr();
+  const Eigen::Index stride_b = column_stride(b);
+  double* ab = values + block_offset(b, k_ab);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) ab[i + j * stride_b] += M(i, j);
+  const Eigen::Index stride_a = column_stride(a);
+  double* ba = values + block_offset(a, k_ba);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) ba[i + j * stride_a] += M(j, i);
 }
 
 void BlockHessian::set_zero() {
@@ -62,6 +85,56 @@ void BlockHessian::add_block(int a, int b, const Mat3& M) {
   const int k = slot(a, b);
   if (k < 0) throw Error(fmt::format("block ({}, {}) is not in the Hessian pattern", a, b), "assembly");
   add_block_at_slot(b, k, M);
+}
+
+void BlockHessian::set_identity_rows(const std::vector<char>& fixed) {
+  double* values = A_.valuePtr();
+  const auto* outer = A_.outerIndexPtr();
+  const int num_vertices = static_cast<int>(rows_.size());
+  for (int v = 0; v < num_vertices; ++v) {
+    if (!fixed[3 * v] && !fixed[3 * v + 1] && !fixed[3 * v + 2]) continue;
+    // The pattern is symmetric: v's row vertices are the vertices whose columns hold v's rows.
+    for (size_t k = 0; k < rows_[v].size(); ++k) {
+      const int u = rows_[v][k];
+      const int k_vu = slot(v, u);  // v's rows in u's columns
+      for (int i = 0; i < 3; ++i) {
+        if (!fixed[3 * v + i]) continue;
+        for (int j = 0; j < 3; ++j) {
+          values[outer[3 * u + j] + 3 * k_vu + i] = 0.0;      // row 3v+i, column 3u+j
+          values[outer[3 * v + i] + 3 * static_cast<int>(k) + j] = 0.0;  // column 3v+i, row 3u+j
+        }
+      }
+    }
+    const int k_vv = slot(v, v);
+    for (int i = 0; i < 3; ++i)
+      if (fixed[3 * v + i]) values[outer[3 * v + i] + 3 * k_vv + i] = 1.0;
+  }
+}
+
+void BlockHessian::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  const double* values = A_.valuePtr();
+  const int* outer = A_.outerIndexPtr();
+  const int* inner = A_.innerIndexPtr();
+  y.resize(A_.rows());
+  // Column c dotted with x is row c of A x (A is symmetric): each entry of y is written by one
+  // task, with a fixed summation order. (A block-column loop that reads one row index per 3x3
+  // block measured 2.5x slower on a 118k-DOF lattice than this scalar loop.)
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, A_.outerSize(), 512), [&](const auto& range) {
+    for (Eigen::Index c = range.begin(); c != range.end(); ++c) {
+      double sum = 0.0;
+      for (int k = outer[c]; k < outer[c + 1]; ++k) sum += values[k] * x[inner[k]];
+      y[c] = sum;
+    }
+  });
+}
+
+Mat3 BlockHessian::diagonal_block(int v) const {
+  const Eigen::Index k = block_offset(v, slot(v, v)), stride = column_stride(v);
+  const double* values = A_.valuePtr();
+  Mat3 M;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) M(i, j) = values[k + i + j * stride];
+  return M;
 }
 
 void BlockHessian::change_basis(const std::vector<const Mat3*>& frames) {

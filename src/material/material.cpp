@@ -26,7 +26,8 @@ const char* to_string(Projection p) {
 }
 
 Mat9 Eigensystem::reconstruct() const {
-  return vectors * values.asDiagonal() * vectors.transpose();
+  const Mat9 scaled = vectors * values.asDiagonal();
+  return scaled.lazyProduct(vectors.transpose());
 }
 
 Mat9 Eigensystem::projected(Projection mode, double floor) const {
@@ -35,7 +36,10 @@ Mat9 Eigensystem::projected(Projection mode, double floor) const {
     if (mode == Projection::Clamp) v(k) = std::max(v(k), floor);
     if (mode == Projection::Abs) v(k) = std::abs(v(k));
   }
-  return vectors * v.asDiagonal() * vectors.transpose();
+  // Coefficient-based 9x9 product (Eigen would send vectors * diag * vectors^T through its
+  // general blocked GEMM, whose set-up costs more than the product at this size).
+  const Mat9 scaled = vectors * v.asDiagonal();
+  return scaled.lazyProduct(vectors.transpose());
 }
 
 Eigen::SelfAdjointEigenSolver<Mat3> symmetric_eigen3(const Mat3& A) {

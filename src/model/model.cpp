@@ -319,6 +319,7 @@ Model build_model(const Scene& scene) {
 
   m.contact = penalty_contact(scene, m);
   if (m.contact) m.problem->add_form(m.contact);
+  m.problem->set_matrix_free(scene.solver.linear.matrix_free);
   if (!scene.dynamics) {
     m.integrator = std::make_unique<QuasistaticIntegrator>(m.problem, std::move(motion), m.contact,
                                                            make_linear_solver(scene.solver.linear), scene.solver.newton,

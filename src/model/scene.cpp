@@ -244,7 +244,7 @@ SolverSpec parse_solver(JsonObject o) {
   }
   if (o.has("linear")) {
     JsonObject l = o.object("linear");
-    l.allow({"kind", "preconditioner", "tolerance", "eisenstat_walker", "max_iterations"});
+    l.allow({"kind", "preconditioner", "tolerance", "eisenstat_walker", "max_iterations", "hessian"});
     s.linear.kind = l.choice("kind", {"cholmod", "pcg"}, "cholmod");
     // Any registered preconditioner (solver/preconditioner.hpp); an unknown name is rejected
     // with the registered ones listed.
@@ -253,6 +253,13 @@ SolverSpec parse_solver(JsonObject o) {
     if (s.newton.linear_tolerance >= 1.0) l.fail("tolerance", "must be below 1");
     s.newton.eisenstat_walker = l.boolean("eisenstat_walker", false);
     s.linear.max_iterations = l.integer("max_iterations", 1, s.linear.max_iterations);
+    s.linear.matrix_free = l.choice("hessian", {"assembled", "matrix_free"}, "assembled") == "matrix_free";
+    if (s.linear.matrix_free && s.linear.kind != "pcg")
+      l.fail("hessian", "matrix_free needs \"kind\": \"pcg\" (a direct solver factorises the assembled matrix)");
+    if (s.linear.matrix_free && s.linear.preconditioner != "jacobi" && s.linear.preconditioner != "block_jacobi")
+      l.fail("hessian", fmt::format("matrix_free works with the jacobi or block_jacobi preconditioner, not {} (it needs "
+                                    "the assembled matrix)",
+                                    s.linear.preconditioner));
     l.finish();
   }
   const std::string projection = o.choice("projection", {"adaptive", "clamp", "abs", "none"}, "adaptive");
@@ -345,6 +352,9 @@ Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& file)
   if (scene.dynamics && json.contains("solver") && json.at("solver").contains("predictor"))  // an object: parse_solver checked
     throw Error("applies to quasistatic runs only (this scene has dynamics: each time step starts from the last)",
                 name + ": /solver/predictor");
+  if (scene.constraints && scene.solver.linear.matrix_free)
+    throw Error("matrix_free is not available with constraints (the energy-limited stepper factorises its matrices)",
+                name + ": /solver/linear/hessian");
   parse_scene_rig(root, scene);
   root.finish();
   resolve_ramps(scene);

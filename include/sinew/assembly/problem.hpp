@@ -12,6 +12,7 @@
 #include "sinew/linalg/block_hessian.hpp"
 #include "sinew/forms/form.hpp"
 #include "sinew/linalg/linear_operator.hpp"
+#include "sinew/assembly/matrix_free_hessian.hpp"
 
 namespace sinew {
 
@@ -29,6 +30,8 @@ class Problem {
   // Orthonormal frames (columns = local axes) of the vertices whose DOFs are rotated.
   void set_vertex_frames(const std::vector<std::pair<int, Mat3>>& frames);
   bool has_vertex_frames() const { return !frame_of_.empty(); }
+  // The frame of vertex v, or null if its DOFs are not rotated.
+  const Mat3* vertex_frame(Eigen::Index v) const { return frame_of_.empty() ? nullptr : frame_of_[static_cast<size_t>(v)]; }
   // A vector in local DOFs (a Newton step) to global coordinates, in place.
   void to_global(Eigen::VectorXd& d) const;
   // Global coordinates to local DOFs (a gradient), in place.
@@ -60,6 +63,15 @@ class Problem {
   // exact = true: every form's true Hessian (Form::add_exact_hessian), which may be indefinite.
   const LinearOperator& hessian(const Eigen::VectorXd& x, bool exact = false);
   bool is_valid(const Eigen::VectorXd& x) const;
+
+  // Matrix-free Newton systems: hessian() then keeps the Hessians of the forms that support it
+  // as element matrices (Form::supports_hessian_product) and assembles only the others; the
+  // operator has no matrix(), so only CG with a diagonal-type preconditioner can use it.
+  void set_matrix_free(bool on);
+  bool matrix_free() const { return matrix_free_; }
+  // Bytes the last hessian() keeps: the assembled matrix (values and indices) plus the forms'
+  // element matrices.
+  std::size_t hessian_bytes() const;
   // Form::refresh on every form; true if any energy changed.
   bool refresh(const Eigen::VectorXd& x);
   // Form::begin_solve on every form (a Newton solve's first iteration); true if any energy changed.
@@ -77,7 +89,9 @@ class Problem {
   Scales scales_;
   std::shared_ptr<const Discretization> discretization_;
   std::unique_ptr<BlockHessian> hessian_;
-  std::unique_ptr<SparseOperator> hessian_operator_;
+  std::unique_ptr<BlockHessianOperator> hessian_operator_;
+  bool matrix_free_ = false;
+  std::unique_ptr<MatrixFreeHessian> matrix_free_operator_;
 };
 
 }  // namespace sinew

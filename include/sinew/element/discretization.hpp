@@ -21,8 +21,12 @@ class Discretization {
   Eigen::Index num_dofs() const { return 3 * mesh_.num_vertices(); }
 
   // dN/dX (nodes x 3) and weight (w * det dX/dxi) of quadrature point q of element e.
-  const Eigen::MatrixX3d& gradients(Eigen::Index e, int q) const { return dN_dX_[e * qpoints_ + q]; }
-  double weight(Eigen::Index e, int q) const { return weight_[e * qpoints_ + q]; }
+  const Eigen::MatrixX3d& gradients(Eigen::Index e, int q) const { return dN_dX_[point(e, q)]; }
+  double weight(Eigen::Index e, int q) const { return weight_[point(e, q)]; }
+  // Elements whose rest shapes are equal (edge vectors equal to 1e-12 of the element's size,
+  // e.g. every cell of a lattice) share one set of gradients and weights: the number of
+  // distinct sets kept.
+  Eigen::Index num_rest_shapes() const { return static_cast<Eigen::Index>(weight_.size()) / qpoints_; }
   double rest_volume(Eigen::Index e) const;
 
   // Node positions of element e from the DOF vector x (3 x nodes).
@@ -35,10 +39,14 @@ class Discretization {
   const std::vector<std::vector<Eigen::Index>>& color_groups() const { return colors_; }
 
  private:
+  size_t point(Eigen::Index e, int q) const {
+    return static_cast<size_t>(shape_[static_cast<size_t>(e)]) * static_cast<size_t>(qpoints_) + static_cast<size_t>(q);
+  }
   VolumeMesh mesh_;
   int nodes_ = 0;
   int qpoints_ = 0;
-  std::vector<Eigen::MatrixX3d> dN_dX_;
+  std::vector<int> shape_;  // rest-shape index of each element
+  std::vector<Eigen::MatrixX3d> dN_dX_;  // per rest shape and quadrature point
   std::vector<double> weight_;
   std::vector<std::vector<Eigen::Index>> colors_;
 };

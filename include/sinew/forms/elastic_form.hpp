@@ -1,7 +1,11 @@
 #pragma once
 // Hyperelastic energy of a mesh: sum over elements and quadrature points of w Psi(F).
+#include <cstdint>
 #include <memory>
+#include <mutex>
+#include <vector>
 
+#include "sinew/element/element_matrix_cache.hpp"
 #include "sinew/element/discretization.hpp"
 #include "sinew/forms/element_form.hpp"
 #include "sinew/material/material.hpp"
@@ -20,6 +24,13 @@ class ElasticForm final : public ElementForm {
   bool projects_hessian() const override { return projection_ != Projection::None; }
   void add_exact_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override;
   bool is_valid(const Eigen::VectorXd& x) const override;
+
+  // Matrix-free: element stiffness matrices kept in single precision (element_matrix_cache.hpp).
+  bool supports_hessian_product() const override { return true; }
+  void prepare_hessian_product(const Eigen::VectorXd& x, bool exact) override;
+  void add_hessian_product(const Eigen::VectorXd& p, Eigen::VectorXd& y) const override;
+  void add_hessian_diagonal(std::vector<Mat3>& diagonal) const override;
+  std::size_t hessian_product_bytes() const override { return element_matrices_.bytes(); }
 
   // Per-element fields for output: energy (integrated), mean J, volume-averaged energy
   // density and Frobenius norm of P.
@@ -40,9 +51,30 @@ class ElasticForm final : public ElementForm {
 
  private:
   void add_hessian_projected(const Eigen::VectorXd& x, BlockHessian& H, Projection projection) const;
+  // Fixed-size loops for N-node elements (fixed_element.hpp).
+  template <int N>
+  double value_fixed(const Eigen::VectorXd& x) const;
+  template <int N>
+  void add_gradient_fixed(const Eigen::VectorXd& x, Eigen::VectorXd& g) const;
+  // Element stiffness K_e (upper node-pair blocks) at x: body(e, K) for every element, in
+  // parallel over colour groups.
+  template <int N, class Body>
+  void for_each_element_stiffness(const Eigen::VectorXd& x, Projection projection, const Body& body) const;
+  template <int N>
+  void add_hessian_fixed(const Eigen::VectorXd& x, BlockHessian& H, Projection projection) const;
+  template <int N>
+  void prepare_hessian_product_fixed(const Eigen::VectorXd& x, Projection projection);
+  // Scatter map: slot of node a's rows in node b's column, per element (N x N each), for the
+  // pattern of H; rebuilt when the pattern changes.
+  const std::vector<std::uint16_t>& scatter_map(const BlockHessian& H) const;
+
   std::shared_ptr<const Discretization> disc_;
   std::shared_ptr<const Material> material_;
   Projection projection_;
+  ElementMatrixCache element_matrices_;
+  mutable std::mutex scatter_mutex_;
+  mutable std::uint64_t scatter_pattern_ = 0;
+  mutable std::vector<std::uint16_t> scatter_slots_;
 };
 
 }  // namespace sinew

@@ -4,6 +4,7 @@
 // PSD Hessian; Newton and the integrators know only the sum (assembly/problem.hpp). Forms that are
 // sums over elements also expose the per-element interface (element_form.hpp).
 #include <Eigen/Core>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,17 @@ class Form {
   // gradient, and the projected one for symmetry and definiteness).
   virtual bool projects_hessian() const { return false; }
   virtual void add_exact_hessian(const Eigen::VectorXd& x, BlockHessian& H) const { add_hessian(x, H); }
+
+  // Matrix-free Newton systems (Problem::set_matrix_free): a form that supports it keeps its
+  // Hessian as element matrices (prepare_hessian_product at each linearisation point, projected
+  // unless `exact`) and applies it, instead of adding it to the assembled matrix.
+  virtual bool supports_hessian_product() const { return false; }
+  virtual void prepare_hessian_product(const Eigen::VectorXd& /*x*/, bool /*exact*/) {}
+  // y += H p, and diagonal[v] += the 3x3 diagonal block of vertex v, for the prepared H.
+  virtual void add_hessian_product(const Eigen::VectorXd& /*p*/, Eigen::VectorXd& /*y*/) const {}
+  virtual void add_hessian_diagonal(std::vector<Mat3>& /*diagonal*/) const {}
+  // Bytes the prepared Hessian keeps.
+  virtual std::size_t hessian_product_bytes() const { return 0; }
 
   // Vertex groups the Hessian couples (for the sparsity pattern).
   virtual void couplings(std::vector<std::vector<int>>& /*cliques*/) const {}

@@ -2,9 +2,11 @@
 // A sparse matrix of full 3x3 vertex blocks whose sparsity pattern is built once from the
 // vertex couplings of every energy term and reused by every Newton iteration.
 #include <Eigen/Sparse>
+#include <cstdint>
 #include <vector>
 
 #include "sinew/core/types.hpp"
+#include "sinew/linalg/linear_operator.hpp"
 
 namespace sinew {
 
@@ -25,6 +27,29 @@ class BlockHessian {
   // Same, looking the slot up; throws if (a, b) is outside the pattern.
   void add_block(int a, int b, const Mat3& M);
 
+  // Where block (a, b) lives among matrix().valuePtr(): entry (i, j) of the block is at
+  // block_offset(b, slot(a, b)) + i + j * column_stride(b). Element loops precompute the slots
+  // once (a scatter map) instead of searching for every block of every element.
+  Eigen::Index block_offset(int b, int k) const { return A_.outerIndexPtr()[3 * b] + 3 * k; }
+  Eigen::Index column_stride(int b) const { return 3 * static_cast<Eigen::Index>(rows_[b].size()); }
+  // Adds the 3x3 block M at (a, b) and its transpose at (b, a): one call per pair of distinct
+  // nodes of a symmetric element matrix. `k_ab` = slot(a, b), `k_ba` = slot(b, a).
+  void add_symmetric_pair(int a, int b, int k_ab, int k_ba, const Mat3& M);
+  // Changes with every pattern built (a new pattern gets a new id), so a cached scatter map can
+  // tell whether it still matches.
+  std::uint64_t pattern_id() const { return pattern_id_; }
+  // The largest number of row vertices of any column vertex (the range of slot()).
+  int max_slots() const;
+
+  // Replaces the rows and columns of the DOFs flagged in `fixed` (one flag per DOF) by those of
+  // the identity; the pattern is unchanged. Visits only the fixed DOFs' blocks.
+  void set_identity_rows(const std::vector<char>& fixed);
+
+  // y = A x for the symmetric A, in parallel with a fixed summation order.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  // The 3x3 diagonal block of vertex v, read at its slot (no search through the column).
+  Mat3 diagonal_block(int v) const;
+
   // Expresses the DOFs of some vertices in rotated frames: block (a, b) becomes
   // Q_a^T A_ab Q_b, with `frames[v]` = Q_v (null: the identity). The pattern is unchanged.
   void change_basis(const std::vector<const Mat3*>& frames);
@@ -32,6 +57,21 @@ class BlockHessian {
  private:
   Eigen::SparseMatrix<double> A_;
   std::vector<std::vector<int>> rows_;  // sorted row vertices of each column vertex
+  std::uint64_t pattern_id_ = 0;
+};
+
+// A BlockHessian as the Newton system's operator (not owning it); matrix() for direct solvers
+// and multigrid.
+class BlockHessianOperator final : public LinearOperator {
+ public:
+  explicit BlockHessianOperator(const BlockHessian& H) : H_(&H) {}
+  Eigen::Index rows() const override { return H_->matrix().rows(); }
+  void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override { H_->multiply(x, y); }
+  Mat3 diagonal_block(Eigen::Index v) const override { return H_->diagonal_block(static_cast<int>(v)); }
+  const Eigen::SparseMatrix<double>* matrix() const override { return &H_->matrix(); }
+
+ private:
+  const BlockHessian* H_;
 };
 
 }  // namespace sinew

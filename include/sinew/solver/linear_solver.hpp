@@ -37,6 +37,9 @@ struct LinearSolverSettings {
   // pcg only: a name from the preconditioner registry (solver/preconditioner.hpp).
   std::string preconditioner = "block_jacobi";
   int max_iterations = 10000;
+  // pcg only: apply the elastic Hessian from kept element matrices instead of assembling it
+  // (Problem::set_matrix_free); needs a preconditioner that uses only diagonal blocks.
+  bool matrix_free = false;
 };
 
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverSettings& settings);
