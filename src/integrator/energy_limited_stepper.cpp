@@ -321,7 +321,9 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     current = &M;
     F = &slot;
     FactorizationReuse r = reuse;
-    if (&slot == &factor_->lagrangian && slot.refresh_cost() < reuse.exact_lagrangian_below) r.enabled = false;
+    // (The cost is known from the slot's first factorisation on; that one is kept, as before.)
+    if (&slot == &factor_->lagrangian && slot.refresh_cost() > 0.0 && slot.refresh_cost() < reuse.exact_lagrangian_below)
+      r.enabled = false;
     keep_factor = r.enabled;
     F->use(M, r, counters);
   };
