@@ -425,7 +425,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     auto form_w = [&](bool reuse_columns) {
       const auto t_w = Clock::now();
       if (!keep_factor && F->exact()) {
-        // The factorisation is of H and is not kept: W = J H^-1 J^T without the columns.
+        // The factorisation is of the current matrix and is not kept: W exactly, no columns.
         W = F->gram(J);
         Y.resize(0, 0);
         w_exact = true;
