@@ -167,5 +167,31 @@ TEST(LaggedFactorization, SmallMatricesGetEigensSimplicialFactorWithCholmodsAnsw
   EXPECT_LT((xs - xc).norm(), 1e-10 * xc.norm());
 }
 
+TEST(LaggedFactorization, GramMatrixMatchesTheColumnsOfEitherFactor) {
+  // gram(J) = J P^-1 J^T: by forward substitutions alone for the simplicial factor, by full
+  // solves for CHOLMOD's; both against J times the columns P^-1 J^T.
+  const Eigen::SparseMatrix<double> A = lattice_matrix(14, 1.0);  // 405 DOFs
+  const Eigen::Index n = A.rows();
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < 7; ++i)  // sparse rows of 24 entries, like an element's constraint row
+    for (int k = 0; k < 24; ++k) t.emplace_back(i, (53 * i + 17 * k) % n, std::sin(1.0 + i + 0.3 * k));
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J(7, n);
+  J.setFromTriplets(t.begin(), t.end());
+  const Eigen::MatrixXd Jt = Eigen::MatrixXd(J.transpose());
+  for (const int simplicial_below : {1000, 0}) {
+    FactorizationReuse reuse;
+    reuse.simplicial_below = simplicial_below;
+    LaggedFactorization F;
+    LaggedFactorization::Counters counters;
+    F.use(A, reuse, counters);
+    const Eigen::MatrixXd expected = J * F.apply_inverse(Jt);
+    const Eigen::MatrixXd W = F.gram(J);
+    ASSERT_EQ(W.rows(), 7);
+    ASSERT_EQ(W.cols(), 7);
+    EXPECT_LT((W - expected).norm(), 1e-12 * expected.norm()) << "simplicial_below " << simplicial_below;
+    EXPECT_LT((W - W.transpose()).norm(), 1e-14 * W.norm());
+  }
+}
+
 }  // namespace
 }  // namespace sinew

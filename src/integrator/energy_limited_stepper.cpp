@@ -48,21 +48,24 @@ std::pair<Vec3, Vec3> tangents(const Vec3& n) {
 struct Linearisation {
   std::vector<Row> rows;
   double energy_violation = 0.0, max_energy = 0.0, penetration = 0.0;
+  bool satisfied = false;  // both nonlinear tolerances hold at x_k (then `rows` is empty)
 };
 
 Linearisation linearise_constraints(const ElementForm& model, const EnergyLimitedStepSettings& settings,
                                     const std::vector<char>& fixed, const ContactProvider& contacts, double time,
                                     const Eigen::VectorXd& x_k, const Eigen::VectorXd& v_k,
-                                    const std::map<long, char>& ever_active) {
+                                    const std::map<long, char>& ever_active, bool final_iteration) {
   const double h = settings.time_step;
   const Discretization& disc = model.discretization();
   const auto& elements = disc.mesh().elements;
   const std::optional<EnergyLimit>& limit = settings.energy_limit;
   Linearisation lin;
   std::vector<Row>& rows = lin.rows;
-  // Element energies, and the Jacobians of the elements that get a row, in parallel.
+  // Element energies, and the Jacobians of the elements that get a row, in parallel. The grains
+  // keep small meshes (paper 001's 27 and 56 hexahedra) on one thread: an element costs about a
+  // microsecond, less than waking a worker.
   std::vector<double> energies(static_cast<size_t>(disc.num_elements()));
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, disc.num_elements(), 32), [&](const auto& range) {
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, disc.num_elements(), 128), [&](const auto& range) {
     for (Eigen::Index e = range.begin(); e < range.end(); ++e) energies[static_cast<size_t>(e)] = model.element_value(e, x_k);
   });
   std::vector<Eigen::Index> limited;
@@ -73,8 +76,14 @@ Linearisation linearise_constraints(const ElementForm& model, const EnergyLimite
     lin.energy_violation = std::max(lin.energy_violation, U / limit->max_energy - 1.0);
     if (U >= (1.0 - settings.activation) * limit->max_energy || ever_active.count(e)) limited.push_back(e);
   }
+  // The candidates first: when the constraints already hold (or the SQP is out of iterations)
+  // the step ends here, and the Jacobians would go unused.
+  const std::vector<ContactCandidate> candidates = contacts ? contacts(x_k, time, time + h) : std::vector<ContactCandidate>{};
+  for (const ContactCandidate& c : candidates) lin.penetration = std::max(lin.penetration, -c.gap);
+  lin.satisfied = lin.energy_violation <= settings.energy_tolerance && lin.penetration <= settings.contact_tolerance;
+  if (lin.satisfied || final_iteration) return lin;
   std::vector<Eigen::VectorXd> jacobians(limited.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, limited.size(), 4), [&](const auto& range) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, limited.size(), 32), [&](const auto& range) {
     for (size_t i = range.begin(); i < range.end(); ++i) jacobians[i] = energy_constraint_jacobian(model, limited[i], x_k, *limit);
   });
   for (size_t l = 0; l < limited.size(); ++l) {
@@ -93,9 +102,7 @@ Linearisation linearise_constraints(const ElementForm& model, const EnergyLimite
     r.offset = (1.0 - U / limit->max_energy) / h;  // C(x_k) / h (Eq. 22)
     rows.push_back(std::move(r));
   }
-  const std::vector<ContactCandidate> candidates = contacts ? contacts(x_k, time, time + h) : std::vector<ContactCandidate>{};
   for (const ContactCandidate& c : candidates) {
-    lin.penetration = std::max(lin.penetration, -c.gap);
     const Eigen::Index base = 3 * static_cast<Eigen::Index>(c.vertex);
     if (fixed[base] && fixed[base + 1] && fixed[base + 2]) continue;
     auto make_row = [&](const Vec3& dir) {
@@ -304,10 +311,21 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   const Eigen::SparseMatrix<double>* current = &A;
   LaggedFactorization* F = &factor_->backward_euler;
   LaggedFactorization::Counters counters;
+  // Whether the factorisation in use is kept for later matrices (then its columns P^-1 J_i^T are
+  // worth caching). A Lagrangian Hessian changes in every SQP iteration, and solving with a
+  // lagged one costs the splitting's CG solves (two or more per iteration) besides new
+  // columns; where a factorisation costs fewer CG iterations than that
+  // (`exact_lagrangian_below`, small meshes) H is factorised each time and W formed exactly.
+  bool keep_factor = reuse.enabled;
   auto use = [&](const Eigen::SparseMatrix<double>& M, LaggedFactorization& slot) {
     current = &M;
     F = &slot;
-    F->use(M, reuse, counters);
+    FactorizationReuse r = reuse;
+    // (The cost is known from the slot's first factorisation on; that one is kept, as before.)
+    if (&slot == &factor_->lagrangian && slot.refresh_cost() > 0.0 && slot.refresh_cost() < reuse.exact_lagrangian_below)
+      r.enabled = false;
+    keep_factor = r.enabled;
+    F->use(M, r, counters);
   };
   auto solve = [&](const Eigen::VectorXd& r, Eigen::VectorXd& out, bool guess) { F->solve(r, out, guess, counters); };
   use(A, factor_->backward_euler);
@@ -328,14 +346,15 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   auto t_lcp = Clock::now();
   for (int k = 0;; ++k) {
     const Eigen::VectorXd x_k = x0 + h * v_k;
-    const Linearisation lin = linearise_constraints(*limited_, settings_, fixed, contacts_, time_, x_k, v_k, ever_active);
+    const Linearisation lin = linearise_constraints(*limited_, settings_, fixed, contacts_, time_, x_k, v_k, ever_active,
+                                                    k >= settings_.sqp_max_iterations);
     const std::vector<Row>& rows = lin.rows;
     const double energy_violation = lin.energy_violation;
     const double penetration = lin.penetration;
     report.energy_violation = std::max(0.0, energy_violation);
     report.penetration = penetration;
     report.max_element_energy = lin.max_energy;
-    const bool satisfied = energy_violation <= settings_.energy_tolerance && penetration <= settings_.contact_tolerance;
+    const bool satisfied = lin.satisfied;
     if (satisfied || k >= settings_.sqp_max_iterations) {
       report.converged = satisfied;
       v = v_k;
@@ -405,6 +424,15 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     bool w_exact = false;
     auto form_w = [&](bool reuse_columns) {
       const auto t_w = Clock::now();
+      if (!keep_factor && F->exact()) {
+        // The factorisation is of the current matrix and is not kept: W exactly, no columns.
+        W = F->gram(J);
+        Y.resize(0, 0);
+        w_exact = true;
+        for (Eigen::Index i = 0; i < m; ++i) W(i, i) = std::max(W(i, i), 1e-14 * W.diagonal().cwiseAbs().maxCoeff());
+        report.w_seconds += since(t_w);
+        return;
+      }
       std::vector<Eigen::Index> missing;
       w_exact = F->exact();
       for (Eigen::Index i = 0; i < m; ++i) {
@@ -466,7 +494,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
       const int cg_before = counters.cg_iterations;
       // After a PGS solve, the change of multipliers moves u by about P^-1 J^T dlambda: with that
       // as the starting guess CG only corrects for P != H.
-      if (s > 0) u.noalias() += Y * (lambda - lambda_before);
+      if (s > 0 && Y.size() > 0) u.noalias() += Y * (lambda - lambda_before);
       solve(Eigen::VectorXd(J.transpose() * lambda) - g, u, s > 0);
       const int cg_this_split = counters.cg_iterations - cg_before;
       if (F->exact() && !was_exact) form_w(false);  // CG gave up and H was refactorised: W is exact now

@@ -137,4 +137,25 @@ Eigen::MatrixXd LaggedFactorization::apply_inverse(const Eigen::MatrixXd& B) con
   return simplicial_ ? Eigen::MatrixXd(backends_->simplicial.solve(B)) : Eigen::MatrixXd(backends_->cholmod.solve(B));
 }
 
+Eigen::MatrixXd LaggedFactorization::gram(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J) const {
+  const Eigen::Index m = J.rows();
+  Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(J.cols(), m);
+  if (simplicial_) {
+    // Eigen's simplicial factor: P = Perm^-1 L L^T Perm; row r of J^T lands in row Perm(r).
+    const auto& llt = backends_->simplicial;
+    const auto& perm = llt.permutationP().indices();
+    for (Eigen::Index i = 0; i < m; ++i)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, i); it; ++it) Z(perm(it.col()), i) = it.value();
+    llt.matrixL().solveInPlace(Z);
+    Eigen::MatrixXd W(m, m);
+    W.setZero();
+    W.selfadjointView<Eigen::Lower>().rankUpdate(Z.transpose());
+    return W.selfadjointView<Eigen::Lower>();
+  }
+  // CHOLMOD's supernodal factor: the full solve, then J times the columns.
+  for (Eigen::Index i = 0; i < m; ++i)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, i); it; ++it) Z(it.col(), i) = it.value();
+  return J * apply_inverse(Z);
+}
+
 }  // namespace sinew

@@ -34,6 +34,11 @@ struct FactorizationReuse {
   // supernodes) are then most of a factorisation (docs/performance.md, paper 001's examples).
   // Both give the same factor up to rounding; 0 always uses CHOLMOD.
   int simplicial_below = 1000;
+  // The constrained stepper factorises every Lagrangian Hessian (no lagged one) when a
+  // factorisation costs fewer CG iterations than this (refresh_cost(): about 5 for paper 001's
+  // beam, 8 for its 27-hexahedron sphere, 50 at 1,872 DOFs): a lagged H costs two or more CG
+  // solves and the splitting per SQP iteration, more than factorising. 0: always lagged.
+  double exact_lagrangian_below = 12.0;
 };
 
 class LaggedFactorization {
@@ -63,6 +68,10 @@ class LaggedFactorization {
   void solve(const Eigen::VectorXd& r, Eigen::VectorXd& out, bool guess, Counters& counters);
   // P^-1 B with the factorisation at hand (one multi-right-hand-side solve).
   Eigen::MatrixXd apply_inverse(const Eigen::MatrixXd& B) const;
+  // J P^-1 J^T with the factorisation at hand, without the columns P^-1 J^T: with P = L L^T
+  // (permuted) it is Z^T Z for Z = L^-1 J^T, forward substitutions only, which skip the zeros of
+  // the sparse right-hand sides. For the LCP matrix of a factorisation that is not kept.
+  Eigen::MatrixXd gram(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J) const;
   // CG iterations that cost about one factorisation: flops of the factorisation over those of a
   // CG iteration (a triangular solve pair, 4 nnz(L), and a product with M, 2 nnz(M)). Per flop
   // the factorisation's dense supernode updates run faster than the solves, but a refresh also
