@@ -20,7 +20,10 @@
 // exact constraint velocity of the current multipliers; its fixed points solve the exact LCP. A
 // refactorisation happens only when CG needs more than `max_cg_iterations` or the splitting
 // does not converge, so the result is the same as with a fresh factorisation each time, up to
-// the CG and PGS tolerances.
+// the CG and PGS tolerances. On small meshes, where one factorisation costs fewer CG iterations
+// than FactorizationReuse::exact_lagrangian_below, each Lagrangian Hessian H is factorised instead
+// of lagged (A stays lagged): a lagged H would need CG solves and splitting sweeps every SQP
+// iteration, which cost more there.
 #include <map>
 #include <memory>
 #include <optional>
