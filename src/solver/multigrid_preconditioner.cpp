@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "sinew/core/error.hpp"
+#include "sinew/linalg/symmetric_product.hpp"
 #include "sinew/solver/serial_openmp.hpp"
 
 namespace sinew {
@@ -29,17 +30,7 @@ class SinglePrecisionOperator final : public LinearOperator {
   }
   Eigen::Index rows() const override { return A_->rows(); }
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override {
-    const int* outer = A_->outerIndexPtr();
-    const int* inner = A_->innerIndexPtr();
-    y.resize(A_->rows());
-    // Column c dotted with x is row c of A x (A is symmetric).
-    tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, A_->outerSize(), 512), [&](const auto& range) {
-      for (Eigen::Index c = range.begin(); c != range.end(); ++c) {
-        double sum = 0.0;
-        for (int k = outer[c]; k < outer[c + 1]; ++k) sum += static_cast<double>(values_[static_cast<size_t>(k)]) * x[inner[k]];
-        y[c] = sum;
-      }
-    });
+    symmetric_product(*A_, values_.data(), x, y);
   }
   Mat3 diagonal_block(Eigen::Index v) const override { return original_->diagonal_block(v); }
 
