@@ -14,14 +14,8 @@
 namespace sinew {
 namespace {
 
-template <int N>
-auto element_positions(const Discretization& d, Eigen::Index e, const Eigen::VectorXd& x) {
-  return fixed_element::positions<N>(d, e, x);
-}
-template <int N>
-auto element_gradients(const Discretization& d, Eigen::Index e, int q) {
-  return fixed_element::gradients<N>(d, e, q);
-}
+using fixed_element::gradients;
+using fixed_element::positions;
 
 // Runs body(std::integral_constant<int, N>) for the fixed node counts (8, 4), else with
 // Eigen::Dynamic.
@@ -50,9 +44,9 @@ double ElasticForm::value_fixed(const Eigen::VectorXd& x) const {
       tbb::blocked_range<Eigen::Index>(0, d.num_elements(), 256), 0.0,
       [&](const tbb::blocked_range<Eigen::Index>& r, double acc) {
         for (Eigen::Index e = r.begin(); e != r.end(); ++e) {
-          const auto xe = element_positions<N>(d, e, x);
+          const auto xe = positions<N>(d, e, x);
           for (int q = 0; q < d.quadrature_points(); ++q) {
-            const Mat3 F = xe * element_gradients<N>(d, e, q);
+            const Mat3 F = xe * gradients<N>(d, e, q);
             acc += material_->in_domain(F) ? d.weight(e, q) * material_->psi(F)
                                            : std::numeric_limits<double>::infinity();
           }
@@ -77,10 +71,10 @@ void ElasticForm::add_gradient_fixed(const Eigen::VectorXd& x, Eigen::VectorXd& 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, group.size(), 64), [&](const auto& r) {
       for (size_t idx = r.begin(); idx != r.end(); ++idx) {
         const Eigen::Index e = group[idx];
-        const auto xe = element_positions<N>(d, e, x);
+        const auto xe = positions<N>(d, e, x);
         Eigen::Matrix<double, 3, N> ge = Eigen::Matrix<double, 3, N>::Zero(3, d.nodes());
         for (int q = 0; q < d.quadrature_points(); ++q) {
-          const auto D = element_gradients<N>(d, e, q);
+          const auto D = gradients<N>(d, e, q);
           ge.noalias() += d.weight(e, q) * material_->pk1(xe * D) * D.transpose();
         }
         for (int a = 0; a < d.nodes(); ++a) g.segment<3>(3 * elements(e, a)) += ge.col(a);
@@ -98,28 +92,7 @@ void ElasticForm::add_exact_hessian(const Eigen::VectorXd& x, BlockHessian& H) c
 void ElasticForm::add_hessian_projected(const Eigen::VectorXd& x, BlockHessian& H, Projection projection) const {
   if (disc_->nodes() == 8) return add_hessian_fixed<8>(x, H, projection);
   if (disc_->nodes() == 4) return add_hessian_fixed<4>(x, H, projection);
-  const Discretization& d = *disc_;
-  const auto& elements = d.mesh().elements;
-  const int n = d.nodes();
-  for (const auto& group : d.color_groups()) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, group.size(), 32), [&](const auto& r) {
-      Eigen::MatrixXd K(3 * n, 3 * n);
-      for (size_t idx = r.begin(); idx != r.end(); ++idx) {
-        const Eigen::Index e = group[idx];
-        const Eigen::Matrix3Xd xe = d.element_positions(e, x);
-        K.setZero();
-        for (int q = 0; q < d.quadrature_points(); ++q) {
-          const Eigen::MatrixX3d& D = d.gradients(e, q);
-          add_element_hessian(D, material_->projected_hessian(xe * D, projection), d.weight(e, q), K);
-        }
-        for (int b = 0; b < n; ++b)
-          for (int a = 0; a < n; ++a) {
-            const int va = elements(e, a), vb = elements(e, b);
-            H.add_block_at_slot(vb, H.slot(va, vb), K.block<3, 3>(3 * a, 3 * b));
-          }
-      }
-    });
-  }
+  throw Error("the elastic Hessian supports hexahedra and tetrahedra", "assembly");
 }
 
 template <int N, class Body>
@@ -130,10 +103,10 @@ void ElasticForm::for_each_element_stiffness(const Eigen::VectorXd& x, Projectio
       fixed_element::SymmetricBlocks<N> K;
       for (size_t idx = r.begin(); idx != r.end(); ++idx) {
         const Eigen::Index e = group[idx];
-        const auto xe = element_positions<N>(d, e, x);
+        const auto xe = positions<N>(d, e, x);
         K.set_zero();
         for (int q = 0; q < d.quadrature_points(); ++q) {
-          const auto D = element_gradients<N>(d, e, q);
+          const auto D = gradients<N>(d, e, q);
           fixed_element::add_stiffness<N>(D, material_->projected_hessian(xe * D, projection), d.weight(e, q), K);
         }
         K.symmetrize_diagonal();  // the assembled matrix is then exactly symmetric
