@@ -11,6 +11,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/element/discretization.hpp"
 #include "sinew/forms/elastic_form.hpp"
+#include "sinew/integrator/quasistatic_integrator.hpp"
 #include "sinew/mesh/lattice.hpp"
 #include "sinew/mesh/selection.hpp"
 #include "sinew/solver/newton.hpp"
@@ -169,32 +170,37 @@ ExperimentRun run_experiment(const Scene& scene, const ExperimentOptions& option
   auto disc = std::make_shared<Discretization>(build_scene_mesh(scene), where + ": /mesh");
   const VolumeMesh& mesh = disc->mesh();
   auto elastic = std::make_shared<ElasticForm>(disc, build_material(scene.material), scene.solver.projection);
-  Problem problem(mesh.num_vertices());
-  problem.set_discretization(disc);
-  problem.add_form(elastic);
+  auto problem = std::make_shared<Problem>(mesh.num_vertices());
+  problem->set_discretization(disc);
+  problem->add_form(elastic);
   std::vector<KinematicCondition> kinematics;
   for (const auto& b : scene.boundary)
     kinematics.push_back({select_vertices(mesh.vertices, b.select, where + ": boundary " + b.name), b.motion,
                           where + ": boundary " + b.name + " motion", b.components, b.direction});
-  auto linear = make_linear_solver(scene.solver.linear);
+  PrescribedMotion motion = [&](double frame, Eigen::VectorXd& y, std::vector<char>& fixed) {
+    apply_kinematics(kinematics, mesh.vertices, frame, y, fixed);
+  };
+  // The same load stepping as `sinew run` (predictor included), with motion splitting off.
+  QuasistaticIntegrator integrator(problem, std::move(motion), nullptr, make_linear_solver(scene.solver.linear),
+                                   scene.solver.newton, scene.solver.predictor, 0);
 
   ExperimentRun run;
   run.vertices = mesh.num_vertices();
   run.elements = mesh.num_elements();
   for (Eigen::Index e = 0; e < disc->num_elements(); ++e) run.rest_volume += disc->rest_volume(e);
-  Eigen::VectorXd x = mesh.rest_positions();
+  State state{mesh.rest_positions(), {}};
+  const Eigen::VectorXd& x = state.x;
   for (int frame = 1; frame <= frames; ++frame) {
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<char> fixed(x.size(), 0);
-    apply_kinematics(kinematics, mesh.vertices, frame, x, fixed);
-    problem.set_fixed(fixed);
-    std::function<void(const NewtonIterate&)> progress;
-    if (options.on_iteration) progress = [&](const NewtonIterate& it) { options.on_iteration(frame, it); };
-    const NewtonReport r = newton_solve(problem, x, *linear, scene.solver.newton, progress);
+    IterationProgress progress;
+    if (options.on_iteration)
+      progress = [&](int iteration, double residual) { options.on_iteration(frame, NewtonIterate{iteration, residual}); };
+    const StepStats r = integrator.advance_frame(state, frame, progress);
     ExperimentFrame f;
     f.frame = frame;
     f.converged = r.converged;
-    f.newton_iterations = r.iterations;
+    f.predicted = r.counter("predicted_steps") > 0.0;
+    f.newton_iterations = r.newton_iterations;
     f.linear_iterations = r.linear_iterations;
     f.residual = r.residual;
     f.energy = r.energy;
@@ -207,6 +213,7 @@ ExperimentRun run_experiment(const Scene& scene, const ExperimentOptions& option
     run.frames.push_back(f);
     if (options.on_frame) options.on_frame(run.frames.back());
   }
+  run.x = state.x;
   run.x = std::move(x);
   return run;
 }

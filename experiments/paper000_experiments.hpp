@@ -94,6 +94,7 @@ Scene twist_scene(const TwistConfig& config);
 struct ExperimentFrame {
   int frame = 0;
   bool converged = false;
+  bool predicted = false;  // the solve started from the extrapolated last increment
   int newton_iterations = 0;
   int linear_iterations = 0;
   double residual = 0.0;
@@ -127,11 +128,13 @@ struct ExperimentOptions {
   std::function<void(int frame, const NewtonIterate&)> on_iteration;
 };
 
-// Load stepping as in the paper: frame k moves the boundary to its frame-k position and runs one
-// Newton solve from frame k-1's state. Unlike `sinew run` (run_scene), a frame whose solve fails
-// is not split into smaller motions: it is recorded as not converged and the next frame starts
-// from its best effort, so the iteration counts are those of one solve per frame, as the paper
-// reports them. Only elastic energy and kinematic boundaries are supported (throws otherwise).
+// Load stepping as in `sinew run` (QuasistaticIntegrator: frame k moves the boundary to its
+// frame-k position and runs one Newton solve from frame k-1's state, started from the
+// extrapolated last increment when scene.solver.predictor is set), except that a frame whose
+// solve fails is not split into smaller motions: it is recorded as not converged and the next
+// frame starts from its best effort, so the iteration counts are those of one solve per frame,
+// as the paper reports them. Only elastic energy and kinematic boundaries are supported (throws
+// otherwise).
 ExperimentRun run_experiment(const Scene& scene, const ExperimentOptions& options = {});
 
 // ---- scramble -----------------------------------------------------------------------------

@@ -10,13 +10,17 @@ namespace sinew {
 QuasistaticIntegrator::QuasistaticIntegrator(std::shared_ptr<Problem> problem, PrescribedMotion motion,
                                              std::shared_ptr<PenaltyContactForm> contact,
                                              std::unique_ptr<LinearSolver> linear, NewtonSettings newton,
-                                             bool predictor)
+                                             bool predictor, int max_motion_splits)
     : problem_(std::move(problem)),
       motion_(std::move(motion)),
       contact_(std::move(contact)),
       linear_(std::move(linear)),
       newton_(newton),
-      predictor_(predictor) {}
+      predictor_(predictor),
+      max_motion_splits_(max_motion_splits) {
+  if (max_motion_splits_ < 0 || max_motion_splits_ > 30)
+    throw Error(fmt::format("max_motion_splits must be in [0, 30], not {}", max_motion_splits_), "quasistatic integrator");
+}
 
 bool QuasistaticIntegrator::predict(Eigen::VectorXd& trial, double length) const {
   if (!predictor_ || last_length_ <= 0.0 || last_increment_.size() != trial.size()) return false;
@@ -56,7 +60,7 @@ StepStats QuasistaticIntegrator::advance_frame(State& state, int frame, const It
   auto newton_progress = [&](const NewtonIterate& it) {
     if (progress) progress(it.iteration, it.residual);
   };
-  const double min_step = 1.0 / (1 << kMaxMotionSplits);
+  const double min_step = 1.0 / (1 << max_motion_splits_);
   double solved = frame - 1.0, step = 1.0;
   Eigen::VectorXd& x = state.x;
   while (solved < frame) {
@@ -102,8 +106,10 @@ StepStats QuasistaticIntegrator::advance_frame(State& state, int frame, const It
     } else {
       x = trial;  // kept for inspection, never continued from
       stats.converged = false;
-      stats.failure = fmt::format("{} (even with the frame's motion split into steps of 1/{})", r.failure,
-                                  1 << kMaxMotionSplits);
+      stats.failure = max_motion_splits_ == 0
+                          ? r.failure
+                          : fmt::format("{} (even with the frame's motion split into steps of 1/{})", r.failure,
+                                        1 << max_motion_splits_);
       break;
     }
   }

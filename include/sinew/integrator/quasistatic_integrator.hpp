@@ -9,6 +9,8 @@
 // Predictor (engineering codes' extrapolation): each solve starts with the free DOFs moved by the
 // last converged increment, scaled to the new step's length, when that lowers the energy (the
 // energy check is the safeguard; Newton's line search does the rest).
+// `max_motion_splits` = 0 turns splitting off: a failed solve ends its frame (the paper's one
+// solve per frame, as the experiments report it).
 #include <memory>
 
 #include "sinew/assembly/problem.hpp"
@@ -27,7 +29,7 @@ class QuasistaticIntegrator final : public Integrator {
   // solve's target frame.
   QuasistaticIntegrator(std::shared_ptr<Problem> problem, PrescribedMotion motion,
                         std::shared_ptr<PenaltyContactForm> contact, std::unique_ptr<LinearSolver> linear,
-                        NewtonSettings newton, bool predictor = true);
+                        NewtonSettings newton, bool predictor = true, int max_motion_splits = kMaxMotionSplits);
 
   std::string name() const override { return "quasistatic"; }
   std::string description() const override { return "quasistatic load stepping"; }
@@ -53,6 +55,7 @@ class QuasistaticIntegrator final : public Integrator {
   std::unique_ptr<LinearSolver> linear_;
   NewtonSettings newton_;
   bool predictor_ = true;
+  int max_motion_splits_ = kMaxMotionSplits;
   Eigen::VectorXd last_increment_;  // x after - x before the last converged solve
   double last_length_ = 0.0;        // its length in frames
 };
