@@ -49,6 +49,7 @@ struct Settings {
   // "default": Sinew's Newton (adaptive projection, predictor); "paper": paper 000's projected
   // Newton (clamped Hessian every iteration, each frame started from the previous one).
   std::string newton = "default";
+  bool matrix_free = false;  // "hessian": "matrix_free" (elastic Hessian kept per element)
 };
 
 StretchConfig config_for(int diameter, const std::string& family, const Settings& s) {
@@ -59,6 +60,7 @@ StretchConfig config_for(int diameter, const std::string& family, const Settings
   c.solver = paper_solver(s.linear_tolerance, s.newton_cap);
   c.solver.linear.max_iterations = s.cg_cap;
   c.solver.linear.preconditioner = s.preconditioner;
+  c.solver.linear.matrix_free = s.matrix_free;
   if (s.newton == "paper") {
     c.solver.newton.exact_tail = false;
     c.solver.predictor = false;
@@ -179,6 +181,8 @@ int main(int argc, char** argv) {
   app.add_option("--newton", newton_variants,
                  "Newton variants to compare: default (adaptive projection, predictor), paper (clamp, no predictor)");
   app.add_option("--newton-variant", s.newton)->group("");
+  app.add_flag("--matrix-free", s.matrix_free,
+               "matrix-free Hessian (per-element blocks in single precision; jacobi, block_jacobi or multigrid)");
   app.add_flag("--child", child)->group("");
   app.add_option("--child-diameter", child_diameter)->group("");
   app.add_option("--child-family", child_family)->group("");
@@ -237,9 +241,9 @@ int main(int argc, char** argv) {
         const auto [newton_cap, cg_cap] = caps.count(key) ? caps[key] : std::make_pair(s.newton_cap, s.cg_cap);
         const std::string cmd = fmt::format(
             "'{}' --child --child-diameter {} --child-family {} --child-run-frames {} --frames {} "
-            "--newton-cap {} --cg-cap {} --linear-tolerance {} --threads {} --preconditioner {} --newton-variant {}",
+            "--newton-cap {} --cg-cap {} --linear-tolerance {} --threads {} --preconditioner {} --newton-variant {}{}",
             self.string(), d, kModels.at(key), k, s.frames, newton_cap, cg_cap, s.linear_tolerance, s.threads, pc,
-            variant);
+            variant, s.matrix_free ? " --matrix-free" : "");
         std::fprintf(stderr, "running D=%d %s, %s (%d of %d frames)\n", d, kModels.at(key).c_str(), pc.c_str(), k,
                      s.frames);
         FILE* pipe = popen(cmd.c_str(), "r");
@@ -251,7 +255,8 @@ int main(int argc, char** argv) {
         rows.push_back(row_from(nlohmann::json::parse(text), key, full_stretch));
         rows.back().newton_cap = newton_cap;
         rows.back().cg_cap = cg_cap;
-        rows.back().preconditioner = variant == "default" ? pc : pc + ", " + variant + " Newton";
+        rows.back().preconditioner = (variant == "default" ? pc : pc + ", " + variant + " Newton") +
+                                     (s.matrix_free ? ", matrix-free" : "");
       }
     }
 

@@ -173,6 +173,7 @@ ExperimentRun run_experiment(const Scene& scene, const ExperimentOptions& option
   auto problem = std::make_shared<Problem>(mesh.num_vertices());
   problem->set_discretization(disc);
   problem->add_form(elastic);
+  problem->set_matrix_free(scene.solver.linear.matrix_free);
   std::vector<KinematicCondition> kinematics;
   for (const auto& b : scene.boundary)
     kinematics.push_back({select_vertices(mesh.vertices, b.select, where + ": boundary " + b.name), b.motion,

@@ -89,6 +89,37 @@ TEST_P(MatrixFreeHessian, ProductsAndDiagonalMatchTheAssembledOperator) {
   }
 }
 
+// What multigrid's Galerkin product reads (LinearOperator::element_matrices): the elastic
+// elements, then the assembled inertia's blocks, in local frames; summed, they are the operator on
+// the free DOFs (its Dirichlet identity rows are left out). Same structure id for the next
+// Newton matrix.
+TEST_P(MatrixFreeHessian, ElementMatricesSumToTheOperatorOnTheFreeDofs) {
+  const auto [kind, exact] = GetParam();
+  Case s = make_case(kind, true);
+  const Eigen::MatrixXd A(*s.problem->hessian(s.x, exact).matrix());
+  s.problem->set_matrix_free(true);
+  const LinearOperator& op = s.problem->hessian(s.x, exact);
+  const ElementMatrices* elements = op.element_matrices();
+  ASSERT_NE(elements, nullptr);
+  EXPECT_GT(elements->count(), s.disc->num_elements());  // the inertia's blocks come after the elements
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(A.rows(), A.cols());
+  ElementMatrix K;
+  for (Eigen::Index e = 0; e < elements->count(); ++e) {
+    int v[kMaxElementMatrixVertices];
+    const int n = elements->vertices(e, v);
+    elements->matrix(e, K);
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) sum.block<3, 3>(3 * v[a], 3 * v[b]) += K.block<3, 3>(3 * a, 3 * b);
+  }
+  const std::vector<char>& fixed = s.problem->fixed();
+  for (Eigen::Index i = 0; i < A.rows(); ++i)
+    for (Eigen::Index j = 0; j < A.cols(); ++j)
+      if (fixed[static_cast<size_t>(i)] || fixed[static_cast<size_t>(j)]) sum(i, j) = A(i, j);
+  EXPECT_LE((sum - A).norm(), 2e-6 * A.norm());
+  const std::uint64_t id = elements->structure_id();
+  EXPECT_EQ(s.problem->hessian(s.x, exact).element_matrices()->structure_id(), id);
+}
+
 TEST_P(MatrixFreeHessian, NewtonReachesTheAssembledSolution) {
   const auto [kind, exact_tail] = GetParam();
   LinearSolverSettings linear;

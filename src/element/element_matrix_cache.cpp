@@ -47,6 +47,16 @@ void ElementMatrixCache::add_product(const Eigen::VectorXd& x, Eigen::VectorXd& 
   }
 }
 
+void ElementMatrixCache::unpack(Eigen::Index e, Eigen::Ref<Eigen::MatrixXd> K) const {
+  const float* block = values_.data() + static_cast<std::size_t>(e) * static_cast<std::size_t>(blocks_) * 9;
+  for (int a = 0; a < nodes_; ++a)
+    for (int b = a; b < nodes_; ++b, block += 9) {
+      const Eigen::Matrix3d M = Eigen::Map<const Eigen::Matrix3f>(block).cast<double>();
+      K.block<3, 3>(3 * a, 3 * b) = M;
+      if (b != a) K.block<3, 3>(3 * b, 3 * a) = M.transpose();
+    }
+}
+
 void ElementMatrixCache::add_diagonal(std::vector<Mat3>& diagonal) const {
   const auto& elements = d_->mesh().elements;
   for (const auto& group : d_->color_groups()) {

@@ -153,6 +153,17 @@ void ElasticForm::add_hessian_product(const Eigen::VectorXd& p, Eigen::VectorXd&
   element_matrices_.add_product(p, y);
 }
 
+Eigen::Index ElasticForm::hessian_product_elements() const {
+  return element_matrices_.empty() ? 0 : disc_->num_elements();
+}
+
+int ElasticForm::hessian_product_element(Eigen::Index e, int* vertices, ElementMatrix* K) const {
+  const int n = disc_->nodes();
+  for (int a = 0; a < n; ++a) vertices[a] = disc_->mesh().elements(e, a);
+  if (K) element_matrices_.unpack(e, K->topLeftCorner(3 * n, 3 * n));
+  return n;
+}
+
 void ElasticForm::add_hessian_diagonal(std::vector<Mat3>& diagonal) const { element_matrices_.add_diagonal(diagonal); }
 
 const std::vector<std::uint16_t>& ElasticForm::scatter_map(const BlockHessian& H) const {

@@ -256,9 +256,10 @@ SolverSpec parse_solver(JsonObject o) {
     s.linear.matrix_free = l.choice("hessian", {"assembled", "matrix_free"}, "assembled") == "matrix_free";
     if (s.linear.matrix_free && s.linear.kind != "pcg")
       l.fail("hessian", "matrix_free needs \"kind\": \"pcg\" (a direct solver factorises the assembled matrix)");
-    if (s.linear.matrix_free && s.linear.preconditioner != "jacobi" && s.linear.preconditioner != "block_jacobi")
-      l.fail("hessian", fmt::format("matrix_free works with the jacobi or block_jacobi preconditioner, not {} (it needs "
-                                    "the assembled matrix)",
+    if (s.linear.matrix_free && s.linear.preconditioner != "jacobi" && s.linear.preconditioner != "block_jacobi" &&
+        s.linear.preconditioner != "multigrid")
+      l.fail("hessian", fmt::format("matrix_free works with the jacobi, block_jacobi or multigrid preconditioner, not {} "
+                                    "(it needs the assembled matrix)",
                                     s.linear.preconditioner));
     l.finish();
   }

@@ -93,8 +93,12 @@ void MultigridPreconditioner::setup(const LinearOperator& A, const SolverContext
     fallback_.setup(A, context);
     return;
   }
+  // The fine operator: an assembled matrix, or (matrix-free Newton systems) element matrices from
+  // which the first coarse level is formed directly (linalg/element_galerkin.hpp).
   const Eigen::SparseMatrix<double>* matrix = A.matrix();
-  if (!matrix) throw Error("needs the assembled matrix (use block_jacobi with a matrix-free operator)", "preconditioner multigrid");
+  const ElementMatrices* elements = matrix ? nullptr : A.element_matrices();
+  if (!matrix && !elements)
+    throw Error("needs the assembled matrix or the operator's element matrices", "preconditioner multigrid");
   const VolumeMesh& mesh = context.discretization->mesh();
   if (A.rows() != 3 * mesh.num_vertices())
     throw Error(fmt::format("the matrix has {} rows, the lattice {} DOFs", A.rows(), 3 * mesh.num_vertices()),
@@ -104,30 +108,49 @@ void MultigridPreconditioner::setup(const LinearOperator& A, const SolverContext
     lattice_ = context.discretization.get();
     keep_ = context.discretization;
   }
+  fallback_only_ = levels_.size() == 1 && elements;
+  if (fallback_only_) {  // nothing to coarsen to and no matrix to factorise: block-Jacobi
+    fallback_.setup(A, context);
+    return;
+  }
 
-  // Symbolic products again when the matrix's pattern changed (contacts come and go).
-  const bool same_pattern = static_cast<Eigen::Index>(fine_outer_.size()) == matrix->outerSize() + 1 &&
-                            static_cast<Eigen::Index>(fine_inner_.size()) == matrix->nonZeros() &&
-                            matrix->isCompressed() &&
-                            std::equal(fine_outer_.begin(), fine_outer_.end(), matrix->outerIndexPtr()) &&
-                            std::equal(fine_inner_.begin(), fine_inner_.end(), matrix->innerIndexPtr());
+  // Symbolic products again when the matrix's pattern (or the elements) changed (contacts come
+  // and go).
   Eigen::SparseMatrix<double> compressed;
   const Eigen::SparseMatrix<double>* fine = matrix;
-  if (!matrix->isCompressed()) {
+  if (matrix && !matrix->isCompressed()) {
     compressed = *matrix;
     compressed.makeCompressed();
     fine = &compressed;
   }
+  const bool same_pattern =
+      elements ? from_elements_ && element_galerkin_.structure_id() == elements->structure_id()
+               : !from_elements_ && static_cast<Eigen::Index>(fine_outer_.size()) == fine->outerSize() + 1 &&
+                     static_cast<Eigen::Index>(fine_inner_.size()) == fine->nonZeros() &&
+                     std::equal(fine_outer_.begin(), fine_outer_.end(), fine->outerIndexPtr()) &&
+                     std::equal(fine_inner_.begin(), fine_inner_.end(), fine->innerIndexPtr());
   if (!same_pattern) {
-    std::vector<std::vector<int>> pattern = block_pattern(*fine);
-    for (size_t l = 0; l + 1 < levels_.size(); ++l) {
+    std::vector<std::vector<int>> pattern;
+    size_t first = 0;
+    fine_outer_.clear();
+    fine_inner_.clear();
+    if (elements) {
+      element_galerkin_ = ElementGalerkin(*elements, levels_[0]->interpolation);
+      levels_[1]->coarse_matrix = element_galerkin_.make_coarse();
+      pattern = block_pattern(levels_[1]->coarse_matrix);
+      first = 1;
+    } else {
+      pattern = block_pattern(*fine);
+      fine_outer_.assign(fine->outerIndexPtr(), fine->outerIndexPtr() + fine->outerSize() + 1);
+      fine_inner_.assign(fine->innerIndexPtr(), fine->innerIndexPtr() + fine->nonZeros());
+    }
+    for (size_t l = first; l + 1 < levels_.size(); ++l) {
       Level& L = *levels_[l];
       L.galerkin = GalerkinProduct(pattern, L.interpolation);
       levels_[l + 1]->coarse_matrix = L.galerkin.make_coarse();
       pattern = block_pattern(levels_[l + 1]->coarse_matrix);
     }
-    fine_outer_.assign(fine->outerIndexPtr(), fine->outerIndexPtr() + fine->outerSize() + 1);
-    fine_inner_.assign(fine->innerIndexPtr(), fine->innerIndexPtr() + fine->nonZeros());
+    from_elements_ = elements != nullptr;
     coarse_analysed_ = false;
   }
 
@@ -142,14 +165,16 @@ void MultigridPreconditioner::setup(const LinearOperator& A, const SolverContext
     if (l > 0) {
       Level& F = *levels_[l - 1];
       L.free = F.interpolation.coarse_free(F.free);
-      if (l == 1)
+      if (l == 1 && elements)
+        element_galerkin_.compute(*elements, F.free, L.free, L.coarse_matrix);
+      else if (l == 1)
         F.galerkin.compute(*fine, F.free, L.free, L.coarse_matrix);
       else
         F.galerkin.compute(F.coarse_matrix, F.free, L.free, L.coarse_matrix);
       L.A = &L.coarse_matrix;
     }
     L.smoothed = L.A;
-    if (l == 0 && levels_.size() > 1 && fine == matrix) {  // (a compressed copy would not outlive setup)
+    if (l == 0 && matrix && levels_.size() > 1 && fine == matrix) {  // (a compressed copy would not outlive setup)
       L.single.set(*fine, A);
       L.smoothed = &L.single;
     }
@@ -208,7 +233,7 @@ void MultigridPreconditioner::cycle(size_t l, const Eigen::VectorXd& b, Eigen::V
 }
 
 void MultigridPreconditioner::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
-  if (!lattice_) {
+  if (!lattice_ || fallback_only_) {
     fallback_.apply(r, z);
     return;
   }

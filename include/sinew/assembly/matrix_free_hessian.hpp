@@ -21,12 +21,18 @@ class MatrixFreeHessian final : public LinearOperator {
   // `assembled`: the other forms' Hessian (global frame, no Dirichlet rows); `products`: the
   // forms whose prepared Hessians are applied. Both must outlive the operator's use.
   MatrixFreeHessian(const Problem& problem, const BlockHessian& assembled, std::vector<const Form*> products);
+  ~MatrixFreeHessian() override;
 
   Eigen::Index rows() const override { return assembled_->matrix().rows(); }
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override;
   Mat3 diagonal_block(Eigen::Index v) const override { return diagonal_[static_cast<size_t>(v)]; }
+  // The forms' element matrices, then the assembled part's blocks as elements of one or two
+  // vertices, in local frames (Q^T K Q); the Dirichlet identity rows are left out.
+  const ElementMatrices* element_matrices() const override;
 
  private:
+  class Elements;
+  mutable std::unique_ptr<Elements> elements_;  // built on first use
   const Problem* problem_;
   const BlockHessian* assembled_;
   std::vector<const Form*> products_;

@@ -23,6 +23,9 @@ class ElementMatrixCache {
 
   // y += K x over all elements (x and y in the mesh's global DOF numbering).
   void add_product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  // Element e's whole symmetric matrix (3 nodes x 3 nodes, node order of the element) into the
+  // top-left corner of K, in double.
+  void unpack(Eigen::Index e, Eigen::Ref<Eigen::MatrixXd> K) const;
   // diagonal[v] += sum over elements of the vertex's diagonal blocks.
   void add_diagonal(std::vector<Mat3>& diagonal) const;
   std::size_t bytes() const { return values_.size() * sizeof(float); }

@@ -31,6 +31,8 @@ class ElasticForm final : public ElementForm {
   void add_hessian_product(const Eigen::VectorXd& p, Eigen::VectorXd& y) const override;
   void add_hessian_diagonal(std::vector<Mat3>& diagonal) const override;
   std::size_t hessian_product_bytes() const override { return element_matrices_.bytes(); }
+  Eigen::Index hessian_product_elements() const override;
+  int hessian_product_element(Eigen::Index e, int* vertices, ElementMatrix* K) const override;
 
   // Per-element fields for output: energy (integrated), mean J, volume-averaged energy
   // density and Frobenius norm of P.

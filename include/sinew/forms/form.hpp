@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sinew/linalg/block_hessian.hpp"
+#include "sinew/linalg/element_matrices.hpp"
 
 namespace sinew {
 
@@ -36,6 +37,11 @@ class Form {
   // y += H p, and diagonal[v] += the 3x3 diagonal block of vertex v, for the prepared H.
   virtual void add_hessian_product(const Eigen::VectorXd& /*p*/, Eigen::VectorXd& /*y*/) const {}
   virtual void add_hessian_diagonal(std::vector<Mat3>& /*diagonal*/) const {}
+  // The prepared Hessian as element matrices (global frame), for preconditioners that need more
+  // than products (linalg/element_matrices.hpp): how many, and element e's vertices (returns
+  // how many) and, unless K is null, its matrix.
+  virtual Eigen::Index hessian_product_elements() const { return 0; }
+  virtual int hessian_product_element(Eigen::Index /*e*/, int* /*vertices*/, ElementMatrix* /*K*/) const { return 0; }
   // Bytes the prepared Hessian keeps.
   virtual std::size_t hessian_product_bytes() const { return 0; }
 

@@ -38,6 +38,8 @@ class BlockHessian {
   // Changes with every pattern built (a new pattern gets a new id), so a cached scatter map can
   // tell whether it still matches.
   std::uint64_t pattern_id() const { return pattern_id_; }
+  // The row vertices of column vertex b, sorted (slot(a, b) is a's position here).
+  const std::vector<int>& column_vertices(int b) const { return rows_[static_cast<size_t>(b)]; }
   // The largest number of row vertices of any column vertex (the range of slot()).
   int max_slots() const;
 

@@ -5,6 +5,7 @@
 #include <Eigen/Sparse>
 
 #include "sinew/core/types.hpp"
+#include "sinew/linalg/element_matrices.hpp"
 
 namespace sinew {
 
@@ -18,6 +19,9 @@ class LinearOperator {
   virtual Mat3 diagonal_block(Eigen::Index v) const = 0;
   // The assembled matrix when there is one (direct solvers need it), else nullptr.
   virtual const Eigen::SparseMatrix<double>* matrix() const { return nullptr; }
+  // A matrix-free operator as a sum of element matrices (its Dirichlet identity rows left out),
+  // for preconditioners that need more than products; nullptr when it has none.
+  virtual const ElementMatrices* element_matrices() const { return nullptr; }
 };
 
 // A view of an assembled symmetric sparse matrix (not owning it).

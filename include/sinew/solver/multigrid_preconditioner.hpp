@@ -8,13 +8,17 @@
 //
 // The hierarchy is built once per discretisation, the symbolic Galerkin products once per
 // sparsity pattern; each setup (each Newton matrix) recomputes the coarse operators, the
-// smoothers' eigenvalue estimates and the coarse factorisation. It needs the assembled matrix
-// and the mesh's lattice grid (SolverContext::lattice()); without a lattice it is block-Jacobi.
+// smoothers' eigenvalue estimates and the coarse factorisation. It needs the mesh's lattice grid
+// (SolverContext::lattice(); without one it is block-Jacobi) and either the assembled matrix or,
+// for a matrix-free operator, its element matrices: then the finest level smooths with the
+// operator's own products and the first coarse level is P^T A P summed over the elements
+// (linalg/element_galerkin.hpp), so the fine matrix is never formed.
 #include <Eigen/CholmodSupport>
 #include <memory>
 #include <vector>
 
 #include "sinew/linalg/block_sparse_matrix.hpp"
+#include "sinew/linalg/element_galerkin.hpp"
 #include "sinew/linalg/galerkin_product.hpp"
 #include "sinew/solver/chebyshev_smoother.hpp"
 #include "sinew/solver/diagonal_preconditioners.hpp"
@@ -51,6 +55,9 @@ class MultigridPreconditioner final : public Preconditioner {
   std::shared_ptr<const void> keep_;  // keeps that discretisation alive
   std::vector<std::unique_ptr<Level>> levels_;
   std::vector<int> fine_outer_, fine_inner_;  // the fine pattern the Galerkin products are for
+  ElementGalerkin element_galerkin_;          // level 1 from a matrix-free operator's elements
+  bool from_elements_ = false;                // the symbolic products are for element matrices
+  bool fallback_only_ = false;                // element matrices on a single level: block-Jacobi
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> coarse_llt_;
   bool coarse_analysed_ = false;
   bool coarse_indefinite_ = false;  // the true Hessian's coarsest level is not positive definite
