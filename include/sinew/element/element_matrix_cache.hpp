@@ -1,7 +1,9 @@
 #pragma once
-// Per-element symmetric stiffness matrices kept for a matrix-free Hessian product: the 3x3
-// blocks K_ab (a <= b) of each element in single precision (a hexahedron: 36 blocks, 1,296
-// bytes, against ~4 kB per hexahedron for the assembled double matrix with its indices).
+// Per-element symmetric stiffness matrices kept for a matrix-free Hessian product: the upper
+// 3x3 blocks K_ab (a <= b) of each element in single precision (a hexahedron: 36 blocks, 1,296
+// bytes, against ~4 kB per hexahedron for the assembled double matrix with its indices), stored
+// as one column panel per node b (rows 0 .. 3b + 2 of columns 3b .. 3b + 2, column-major), so a
+// product is a few short contiguous matrix-vector products per element.
 // y += sum_e K_e x_e runs over the mesh's colour groups, so no two tasks write one vertex.
 #include <Eigen/Core>
 #include <cstddef>
@@ -18,8 +20,9 @@ class ElementMatrixCache {
   void resize(const Discretization& d);
   bool empty() const { return values_.empty(); }
 
-  // Stores block K_ab (a <= b, node indices within element e) in single precision.
+  // Stores block K_ab (a <= b, node indices within element e) in single precision, and reads it.
   void store(Eigen::Index e, int a, int b, const Mat3& K);
+  Mat3 block(Eigen::Index e, int a, int b) const;
 
   // y += K x over all elements (x and y in the mesh's global DOF numbering).
   void add_product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
@@ -31,12 +34,10 @@ class ElementMatrixCache {
   std::size_t bytes() const { return values_.size() * sizeof(float); }
 
  private:
-  std::size_t block_index(int a, int b) const { return static_cast<std::size_t>(pair_[static_cast<std::size_t>(a * nodes_ + b)]); }
   const Discretization* d_ = nullptr;
   int nodes_ = 0;
-  int blocks_ = 0;          // upper blocks per element: nodes (nodes + 1) / 2
-  std::vector<int> pair_;   // (a, b) with a <= b -> block number
-  std::vector<float> values_;  // per element, per block, 9 entries column-major
+  std::size_t per_element_ = 0;  // floats per element: 9 nodes (nodes + 1) / 2
+  std::vector<float> values_;  // per element, its column panels
 };
 
 }  // namespace sinew
