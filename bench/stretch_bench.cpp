@@ -16,6 +16,7 @@
 #include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -50,6 +51,7 @@ struct Settings {
   // Newton (clamped Hessian every iteration, each frame started from the previous one).
   std::string newton = "default";
   bool matrix_free = false;  // "hessian": "matrix_free" (elastic Hessian kept per element)
+  bool progress = false;     // print every Newton iteration (large runs)
 };
 
 StretchConfig config_for(int diameter, const std::string& family, const Settings& s) {
@@ -88,6 +90,13 @@ int run_child(int diameter, const std::string& family, int run_frames, const Set
                  family.c_str(), f.frame, run_frames, f.converged ? "converged" : "NOT converged", f.newton_iterations,
                  f.linear_iterations, f.residual, f.seconds);
   };
+  const auto start = std::chrono::steady_clock::now();
+  if (s.progress)
+    o.on_iteration = [&](int frame, const NewtonIterate& it) {
+      std::fprintf(stderr, "  [D=%d %s] frame %d, Newton %d: residual %.3e, %.1f s\n", diameter, family.c_str(), frame,
+                   it.iteration, it.residual,
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    };
   const ExperimentRun run = run_experiment(stretch_scene(config_for(diameter, family, s)), o);
   nlohmann::json frames = nlohmann::json::array();
   for (const auto& f : run.frames)
@@ -181,6 +190,7 @@ int main(int argc, char** argv) {
   app.add_option("--newton", newton_variants,
                  "Newton variants to compare: default (adaptive projection, predictor), paper (clamp, no predictor)");
   app.add_option("--newton-variant", s.newton)->group("");
+  app.add_flag("--progress", s.progress, "print every Newton iteration (residual, elapsed time) on stderr");
   app.add_flag("--matrix-free", s.matrix_free,
                "matrix-free Hessian (per-element blocks in single precision; jacobi, block_jacobi or multigrid)");
   app.add_flag("--child", child)->group("");
@@ -241,9 +251,9 @@ int main(int argc, char** argv) {
         const auto [newton_cap, cg_cap] = caps.count(key) ? caps[key] : std::make_pair(s.newton_cap, s.cg_cap);
         const std::string cmd = fmt::format(
             "'{}' --child --child-diameter {} --child-family {} --child-run-frames {} --frames {} "
-            "--newton-cap {} --cg-cap {} --linear-tolerance {} --threads {} --preconditioner {} --newton-variant {}{}",
+            "--newton-cap {} --cg-cap {} --linear-tolerance {} --threads {} --preconditioner {} --newton-variant {}{}{}",
             self.string(), d, kModels.at(key), k, s.frames, newton_cap, cg_cap, s.linear_tolerance, s.threads, pc,
-            variant, s.matrix_free ? " --matrix-free" : "");
+            variant, s.matrix_free ? " --matrix-free" : "", s.progress ? " --progress" : "");
         std::fprintf(stderr, "running D=%d %s, %s (%d of %d frames)\n", d, kModels.at(key).c_str(), pc.c_str(), k,
                      s.frames);
         FILE* pipe = popen(cmd.c_str(), "r");
