@@ -65,7 +65,7 @@ StretchConfig config_for(int diameter, const std::string& family, const Settings
   c.solver.linear.matrix_free = s.matrix_free;
   if (s.newton == "paper") {
     c.solver.newton.exact_tail = false;
-    c.solver.predictor = false;
+    c.solver.predictor = LoadStepPredictor::None;
   } else if (s.newton != "default") {
     throw Error("unknown Newton variant '" + s.newton + "' (default, paper)", "--newton");
   }

@@ -1,5 +1,6 @@
 #include "sinew/integrator/quasistatic_integrator.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -10,7 +11,7 @@ namespace sinew {
 QuasistaticIntegrator::QuasistaticIntegrator(std::shared_ptr<Problem> problem, PrescribedMotion motion,
                                              std::shared_ptr<PenaltyContactForm> contact,
                                              std::unique_ptr<LinearSolver> linear, NewtonSettings newton,
-                                             bool predictor, int max_motion_splits)
+                                             LoadStepPredictor predictor, int max_motion_splits)
     : problem_(std::move(problem)),
       motion_(std::move(motion)),
       contact_(std::move(contact)),
@@ -22,8 +23,8 @@ QuasistaticIntegrator::QuasistaticIntegrator(std::shared_ptr<Problem> problem, P
     throw Error(fmt::format("max_motion_splits must be in [0, 30], not {}", max_motion_splits_), "quasistatic integrator");
 }
 
-bool QuasistaticIntegrator::predict(Eigen::VectorXd& trial, double length) const {
-  if (!predictor_ || last_length_ <= 0.0 || last_increment_.size() != trial.size()) return false;
+bool QuasistaticIntegrator::extrapolate(Eigen::VectorXd& trial, double length) const {
+  if (last_length_ <= 0.0 || last_increment_.size() != trial.size()) return false;
   // The fixed mask is in the problem's vertex frames (rotated for direction conditions).
   const std::vector<char>& fixed = problem_->fixed();
   Eigen::VectorXd increment = (length / last_length_) * last_increment_;
@@ -38,6 +39,60 @@ bool QuasistaticIntegrator::predict(Eigen::VectorXd& trial, double length) const
   if (!(std::isfinite(extrapolated) && extrapolated < plain)) return false;
   trial = predicted;
   return true;
+}
+
+bool QuasistaticIntegrator::tangent(const Eigen::VectorXd& x, Eigen::VectorXd& trial, StepStats& stats) {
+  auto t0 = std::chrono::steady_clock::now();
+  // The linearised problem at x: H(x) delta = -(g(x) + H(x) d) on the free DOFs, d = the step's
+  // prescribed increment (trial - x). g and H d come from central differences of the gradient
+  // along d (the Hessian's fixed rows and columns are replaced by the identity, so it cannot
+  // give the coupling of free to prescribed DOFs); the step h moves no DOF by more than 1e-6 of
+  // the body's size, far above round-off and far below any nonlinearity.
+  const Eigen::VectorXd d = trial - x;
+  Eigen::VectorXd rhs;
+  const double largest = d.lpNorm<Eigen::Infinity>();
+  if (largest > 0.0) {
+    double size = problem_->scales().length;
+    if (!(size > 0.0)) {
+      const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> p(x.data(), 3, x.size() / 3);
+      size = (p.rowwise().maxCoeff() - p.rowwise().minCoeff()).norm();
+    }
+    const double h = std::min(1.0, 1e-6 * size / largest);
+    const Eigen::VectorXd plus = x + h * d, minus = x - h * d;
+    if (!problem_->is_valid(plus) || !problem_->is_valid(minus)) return false;
+    const Eigen::VectorXd g_plus = problem_->gradient(plus), g_minus = problem_->gradient(minus);
+    rhs = 0.5 * (g_plus + g_minus) + (0.5 / h) * (g_plus - g_minus);
+  } else {
+    rhs = problem_->gradient(x);  // only the loads change
+  }
+  if (!rhs.allFinite() || rhs.squaredNorm() == 0.0) return false;
+  const LinearOperator& H = problem_->hessian(x);
+  stats.assembly_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t0 = std::chrono::steady_clock::now();
+  Eigen::VectorXd delta;
+  const LinearSolveReport lin =
+      linear_->solve(H, -rhs, delta, newton_.linear_tolerance, SolverContext{problem_->discretization(), problem_->fixed()});
+  stats.solve_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  stats.linear_iterations += lin.iterations;
+  stats.add_counter("tangent_predictor_linear_iterations", lin.iterations);
+  if (!delta.allFinite()) return false;
+  problem_->to_global(delta);
+  // The safeguard: the linearisation may overshoot (or invert elements of a log-based
+  // material) where the step is large, so the longest of 1, 1/2, 1/4, 1/8 of it that lowers
+  // the energy is taken.
+  t0 = std::chrono::steady_clock::now();
+  const double plain = problem_->value(trial);
+  bool moved = false;
+  for (double alpha = 1.0; alpha >= 0.125 && !moved; alpha *= 0.5) {
+    const Eigen::VectorXd predicted = trial + alpha * delta;
+    const double energy = problem_->value(predicted);
+    if (std::isfinite(energy) && energy < plain) {
+      trial = predicted;
+      moved = true;
+    }
+  }
+  stats.assembly_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return moved;
 }
 
 bool QuasistaticIntegrator::split_changes_problem(double from, double to, const Eigen::VectorXd& x) {
@@ -70,7 +125,14 @@ StepStats QuasistaticIntegrator::advance_frame(State& state, int frame, const It
     motion_(target, trial, fixed);
     problem_->set_fixed(fixed);
     if (contact_) contact_->begin_step(x, solved, target, 0.0);  // obstacles at `target`
-    if (predict(trial, target - solved)) stats.add_counter("predicted_steps", 1.0);
+    const bool may_extrapolate = predictor_ == LoadStepPredictor::Extrapolate || predictor_ == LoadStepPredictor::Auto;
+    bool predicted = may_extrapolate && extrapolate(trial, target - solved);
+    if (predicted) stats.add_counter("predicted_steps", 1.0);
+    // Auto: the tangent where there is no increment to extrapolate (the first step), or where
+    // extrapolating does not lower the energy (the motion turned).
+    if (!predicted && (predictor_ == LoadStepPredictor::Tangent || predictor_ == LoadStepPredictor::Auto) &&
+        tangent(x, trial, stats))
+      stats.add_counter("tangent_predicted_steps", 1.0);
     const NewtonReport r = newton_solve(*problem_, trial, *linear_, newton_, newton_progress, &x);
     stats.newton_iterations += r.iterations;
     stats.linear_iterations += r.linear_iterations;
@@ -117,7 +179,7 @@ StepStats QuasistaticIntegrator::advance_frame(State& state, int frame, const It
 }
 
 nlohmann::json QuasistaticIntegrator::checkpoint_state() const {
-  if (!predictor_ || last_length_ <= 0.0) return nlohmann::json::object();
+  if (predictor_ == LoadStepPredictor::None || last_length_ <= 0.0) return nlohmann::json::object();
   return {{"last_increment", std::vector<double>(last_increment_.data(), last_increment_.data() + last_increment_.size())},
           {"last_length", last_length_}};
 }

@@ -267,7 +267,11 @@ SolverSpec parse_solver(JsonObject o) {
   // "adaptive": the clamped Hessian far from equilibrium, the true one near it (NewtonSettings::exact_tail).
   s.projection = parse_projection(projection == "adaptive" ? "clamp" : projection);
   s.newton.exact_tail = projection == "adaptive";
-  s.predictor = o.choice("predictor", {"extrapolate", "none"}, "extrapolate") == "extrapolate";
+  const std::string predictor = o.choice("predictor", {"auto", "extrapolate", "tangent", "none"}, "auto");
+  s.predictor = predictor == "extrapolate" ? LoadStepPredictor::Extrapolate
+                : predictor == "tangent"   ? LoadStepPredictor::Tangent
+                : predictor == "none"      ? LoadStepPredictor::None
+                                           : LoadStepPredictor::Auto;
   o.finish();
   return s;
 }

@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "sinew/integrator/load_step_predictor.hpp"
 #include "sinew/motion/prescribed_motion.hpp"
 #include "sinew/model/dynamics_spec.hpp"
 #include "sinew/material/spec.hpp"
@@ -91,7 +92,7 @@ struct SolverSpec {
   NewtonSettings newton;
   LinearSolverSettings linear;
   Projection projection = Projection::Clamp;
-  bool predictor = true;  // quasistatic: start each load step from the extrapolated last increment
+  LoadStepPredictor predictor = LoadStepPredictor::Auto;  // quasistatic: where each load step starts
 };
 
 struct OutputSpec {
