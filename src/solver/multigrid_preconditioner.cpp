@@ -8,14 +8,15 @@
 #include <limits>
 
 #include "sinew/core/error.hpp"
+#include "sinew/linalg/single_precision_block_rows.hpp"
 #include "sinew/linalg/symmetric_product.hpp"
 #include "sinew/solver/serial_openmp.hpp"
 
 namespace sinew {
 namespace {
 
-// The fine matrix with its values in single precision, for the smoother and the V-cycle's
-// residual only (CG's own products stay in double). A product streams 8 bytes per nonzero
+// The fine matrix with its values in single precision (when its pattern is not made of 3x3
+// blocks, else SinglePrecisionBlockRows), for the smoother and the V-cycle's residual only (CG's own products stay in double). A product streams 8 bytes per nonzero
 // instead of 12, and the V-cycle is only a preconditioner: a fixed linear operator either way.
 class SinglePrecisionOperator final : public LinearOperator {
  public:
@@ -48,7 +49,8 @@ struct MultigridPreconditioner::Level {
   Eigen::Index dofs = 0;
   const LinearOperator* A = nullptr;
   const LinearOperator* smoothed = nullptr;  // what the smoother and the residual use
-  SinglePrecisionOperator single;            // level 0: A in single precision
+  SinglePrecisionBlockRows single_blocks;    // level 0: A in single precision, block rows
+  SinglePrecisionOperator single;            // the same for a pattern that is not in 3x3 blocks
   BlockSparseMatrix coarse_matrix;  // levels >= 1: the operator
   std::vector<char> free;
   ChebyshevSmoother smoother;
@@ -175,8 +177,12 @@ void MultigridPreconditioner::setup(const LinearOperator& A, const SolverContext
     }
     L.smoothed = L.A;
     if (l == 0 && matrix && levels_.size() > 1 && fine == matrix) {  // (a compressed copy would not outlive setup)
-      L.single.set(*fine, A);
-      L.smoothed = &L.single;
+      if (L.single_blocks.set(*fine, A)) {
+        L.smoothed = &L.single_blocks;
+      } else {
+        L.single.set(*fine, A);
+        L.smoothed = &L.single;
+      }
     }
     if (l + 1 < levels_.size()) L.smoother.setup(*L.smoothed, L.free, settings_.smoother);
   }
