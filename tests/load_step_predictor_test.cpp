@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "sinew/forms/elastic_form.hpp"
 #include "sinew/integrator/quasistatic_integrator.hpp"
@@ -17,10 +18,11 @@ namespace sinew {
 namespace {
 
 // A 4 x 2 x 2 bar of stable Neo-Hookean hexahedra (nu = 0.45), the x = 0 end pinned and the
-// x = 1 end moved by `scale` (stretch and shear) per frame. Returns the residual at the start of
+// x = 1 end moved by `scale` (stretch and shear) per frame, or turned by `twist` radians per
+// frame about the bar's axis. Returns the residual at the start of
 // frame `frames` (Newton takes no iteration), after `frames - 1` solved frames.
 double residual_after_prediction(LoadStepPredictor predictor, double scale, int frames = 1,
-                                 StepStats* last = nullptr) {
+                                 StepStats* last = nullptr, double twist = 0.0) {
   const VolumeMesh mesh = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.5, 0.5), Eigen::Vector3i(4, 2, 2));
   auto disc = std::make_shared<Discretization>(mesh);
   const double E = 1e5, nu = 0.45, lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
@@ -30,8 +32,12 @@ double residual_after_prediction(LoadStepPredictor predictor, double scale, int 
   std::vector<KinematicCondition> bcs;
   bcs.push_back({select_vertices(mesh.vertices, PlaneSelector{{0, 0, 0}, {-1, 0, 0}}, "left"), Pinned{}, "left",
                  {true, true, true}, {}});
-  bcs.push_back({select_vertices(mesh.vertices, PlaneSelector{{1, 0, 0}, {1, 0, 0}}, "right"),
-                 Translation{Eigen::Vector3d(0.2, 0.1, -0.05) * scale}, "right", {true, true, true}, {}});
+  if (twist != 0.0)
+    bcs.push_back({select_vertices(mesh.vertices, PlaneSelector{{1, 0, 0}, {1, 0, 0}}, "right"),
+                   Rotation{{1, 0.25, 0.25}, {1, 0, 0}, twist}, "right", {true, true, true}, {}});
+  else
+    bcs.push_back({select_vertices(mesh.vertices, PlaneSelector{{1, 0, 0}, {1, 0, 0}}, "right"),
+                   Translation{Eigen::Vector3d(0.2, 0.1, -0.05) * scale}, "right", {true, true, true}, {}});
   PrescribedMotion motion = [bcs, vertices = mesh.vertices](double frame, Eigen::VectorXd& y, std::vector<char>& fixed) {
     apply_kinematics(bcs, vertices, frame, y, fixed);
   };
@@ -91,6 +97,22 @@ TEST(LoadStepPredictor, AutoUsesTheTangentFirstAndExtrapolatesAfter) {
   // A large first step (the end moved by a fifth of the bar): the tangent start is much nearer
   // equilibrium than the plain one.
   EXPECT_LT(auto_first, 0.1 * residual_after_prediction(LoadStepPredictor::None, 0.5));
+}
+
+TEST(LoadStepPredictor, TangentIsRejectedWhereTheLinearisationDoesNotHold) {
+  // A quarter turn of the end in one step: the linearised interior moves along chords, sheared
+  // and compressed; its energy falls far short of the quadratic model's prediction, so the plain
+  // start is kept (paper 000's twist needs fewer Newton iterations from it).
+  StepStats turned;
+  const double tangent = residual_after_prediction(LoadStepPredictor::Tangent, 0.0, 1, &turned, std::numbers::pi / 2);
+  const double plain = residual_after_prediction(LoadStepPredictor::None, 0.0, 1, nullptr, std::numbers::pi / 2);
+  EXPECT_EQ(turned.counter("tangent_predicted_steps"), 0.0);
+  EXPECT_GT(turned.counter("tangent_predictor_linear_iterations"), 0.0);  // it was tried
+  EXPECT_EQ(tangent, plain);
+  // A small turn is within the linearisation's reach.
+  StepStats small;
+  residual_after_prediction(LoadStepPredictor::Tangent, 0.0, 1, &small, 0.01);
+  EXPECT_EQ(small.counter("tangent_predicted_steps"), 1.0);
 }
 
 }  // namespace
