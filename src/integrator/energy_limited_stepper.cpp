@@ -64,10 +64,8 @@ Linearisation linearise_constraints(const ElementForm& model, const EnergyLimite
   // Element energies, and the Jacobians of the elements that get a row, in parallel. The grains
   // keep small meshes (paper 001's 27 and 56 hexahedra) on one thread: an element costs about a
   // microsecond, less than waking a worker.
-  std::vector<double> energies(static_cast<size_t>(disc.num_elements()));
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, disc.num_elements(), 128), [&](const auto& range) {
-    for (Eigen::Index e = range.begin(); e < range.end(); ++e) energies[static_cast<size_t>(e)] = model.element_value(e, x_k);
-  });
+  std::vector<double> energies;
+  model.element_values(x_k, energies);
   std::vector<Eigen::Index> limited;
   for (Eigen::Index e = 0; e < disc.num_elements(); ++e) {
     const double U = energies[static_cast<size_t>(e)];
