@@ -89,7 +89,9 @@ class LaggedFactorization {
 
   struct Backends;
   std::unique_ptr<Backends> backends_;
-  bool simplicial_ = false;  // chosen with the symbolic analysis, from the matrix size
+  // Chosen with the symbolic analysis, from the matrix's size and structure.
+  enum class Backend { Cholmod, Simplicial, Block };
+  Backend backend_ = Backend::Cholmod;
   const Eigen::SparseMatrix<double>* current_ = nullptr;
   FactorizationReuse reuse_;
   bool analysed_ = false, valid_ = false, exact_ = false;
