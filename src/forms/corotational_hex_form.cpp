@@ -89,10 +89,10 @@ double CorotationalHexForm::element_value(Eigen::Index e, const Eigen::VectorXd&
 double CorotationalHexForm::element_value(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const {
   const Discretization& d = *disc_;
   const Eigen::Matrix3Xd xe = d.element_positions(e, x);
-  const Mat3 Rt = R.transpose();
+  const Eigen::Matrix<double, 3, 8> rotated = R.transpose() * xe;  // R^T x_a, once for all quadrature points
   double U = 0.0;
   for (int q = 0; q < d.quadrature_points(); ++q) {
-    const Mat3 grad_u = Rt * xe * d.gradients(e, q) - Mat3::Identity();  // Eq. 11
+    const Mat3 grad_u = rotated * d.gradients(e, q) - Mat3::Identity();  // Eq. 11
     const Mat3 eps = 0.5 * (grad_u + grad_u.transpose());                 // Eq. 2
     // psi = 1/2 eps : C : eps = 1/2 lambda tr(eps)^2 + mu eps : eps (the E1/E2/E3 terms of Eq. 16).
     U += d.weight(e, q) * (0.5 * c_.E2 * eps.trace() * eps.trace() + c_.E3 * eps.squaredNorm());
@@ -183,11 +183,28 @@ void CorotationalHexForm::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd
     for (int a = 0; a < 8; ++a) g.segment<3>(3 * elements(e, a)) += ge[static_cast<size_t>(e)].segment<3>(3 * a);
 }
 
+const std::vector<int>& CorotationalHexForm::scatter_map(const BlockHessian& H) const {
+  const std::lock_guard<std::mutex> lock(scatter_mutex_);
+  if (scatter_pattern_ == H.pattern_id() && !scatter_slots_.empty()) return scatter_slots_;
+  const auto& elements = disc_->mesh().elements;
+  scatter_slots_.resize(static_cast<size_t>(disc_->num_elements()) * 64);
+  for (Eigen::Index e = 0; e < disc_->num_elements(); ++e)
+    for (int b = 0; b < 8; ++b)
+      for (int a = 0; a < 8; ++a) {
+        const int k = H.slot(elements(e, a), elements(e, b));
+        if (k < 0) throw Error("an element's vertex pair is not in the Hessian pattern", "assembly");
+        scatter_slots_[static_cast<size_t>(64 * e + 8 * b + a)] = k;
+      }
+  scatter_pattern_ = H.pattern_id();
+  return scatter_slots_;
+}
+
 // Elements of one colour share no vertex, so their blocks are added in parallel.
 void CorotationalHexForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const {
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;
   const auto rotations = all_rotations(x);
+  const std::vector<int>& slots = scatter_map(H);
   for (const auto& group : d.color_groups()) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, group.size(), 16), [&](const auto& r) {
       for (size_t idx = r.begin(); idx != r.end(); ++idx) {
@@ -195,10 +212,9 @@ void CorotationalHexForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H)
         const Mat3& R = (*rotations)[static_cast<size_t>(e)].R;
         const Eigen::MatrixXd& Ke = K_[e];
         for (int b = 0; b < 8; ++b)
-          for (int a = 0; a < 8; ++a) {
-            const int va = elements(e, a), vb = elements(e, b);
-            H.add_block_at_slot(vb, H.slot(va, vb), R * Ke.block<3, 3>(3 * a, 3 * b) * R.transpose());
-          }
+          for (int a = 0; a < 8; ++a)
+            H.add_block_at_slot(elements(e, b), slots[static_cast<size_t>(64 * e + 8 * b + a)],
+                                R * Ke.block<3, 3>(3 * a, 3 * b) * R.transpose());
       }
     });
   }

@@ -12,9 +12,15 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace sinew {
 namespace {
+
+// Below this many elements a step runs on one thread: an element's share of any loop costs
+// about a microsecond, less than waking a worker, and paper 001's 27- and 56-hexahedron scenes
+// spent several percent of their time in oneTBB's dispatch and the workers' wake-ups.
+constexpr Eigen::Index kOneThreadBelow = 128;
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -141,6 +147,8 @@ Linearisation linearise_constraints(const ElementForm& model, const EnergyLimite
 // the positions of its 24 x 24 block among A's stored values, so that H = A + element blocks is
 // a copy and indexed additions.
 struct EnergyLimitedStepper::Factorization {
+  // Steps of meshes below kOneThreadBelow elements run here, on the calling thread alone.
+  tbb::task_arena one_thread{1};
   LaggedFactorization backward_euler, lagrangian;
   Eigen::SparseMatrix<double> A, H;
   // Per element (filled when it is first stiffened): the index among A's values of each entry of
@@ -262,6 +270,8 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
 
 EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v, const std::vector<char>& fixed,
                                                    const Eigen::VectorXd& x_end) {
+  if (limited_->discretization().num_elements() < kOneThreadBelow && tbb::this_task_arena::max_concurrency() > 1)
+    return factor_->one_thread.execute([&] { return step(x, v, fixed, x_end); });
   const auto t_step = Clock::now();
   const SerialOpenMpScope serial_cholmod;
   EnergyLimitedStepReport report;

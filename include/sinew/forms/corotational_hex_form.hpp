@@ -6,7 +6,9 @@
 // and its Hessian the warped stiffness: both hold the rotation fixed, so they are not the exact
 // derivatives of the energy (exact_derivatives() is false); the exact element gradient is
 // element_gradient(e, x, JacobianKind::Exact).
+#include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "sinew/forms/element_form.hpp"
@@ -66,6 +68,12 @@ class CorotationalHexForm final : public ElementForm {
   // The rotations of the last positions a whole-mesh pass saw (value, gradient, Hessian,
   // element_values); per-element calls at the same positions reuse them.
   std::unique_ptr<ElementRotationCache> rotations_;
+  // Per element and node pair (b, a): the slot of block (a, b) in the Hessian pattern of the
+  // given id, found once instead of a search per block and assembly.
+  const std::vector<int>& scatter_map(const BlockHessian& H) const;
+  mutable std::mutex scatter_mutex_;
+  mutable std::uint64_t scatter_pattern_ = 0;
+  mutable std::vector<int> scatter_slots_;
   ElementRotationCache::Corners corners(Eigen::Index e, const Eigen::VectorXd& x) const;
   ElementRotation compute_rotation(Eigen::Index e, const ElementRotationCache::Corners& c) const;
   ElementRotation element_rotation(Eigen::Index e, const Eigen::VectorXd& x) const;
