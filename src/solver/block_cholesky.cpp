@@ -184,8 +184,30 @@ Eigen::VectorXd BlockCholesky::solve(const Eigen::VectorXd& b) const {
 }
 
 Eigen::MatrixXd BlockCholesky::solve(const Eigen::MatrixXd& B) const {
-  Eigen::MatrixXd X(B.rows(), B.cols());
-  for (Eigen::Index c = 0; c < B.cols(); ++c) X.col(c) = solve(Eigen::VectorXd(B.col(c)));
+  // All right-hand sides at once, row-major so that a vertex's 3 rows are contiguous: each block
+  // of L is read once for all columns (the LCP's columns of H^-1 J^T, tens per solve).
+  using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  using Block = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::RowMajor>;
+  const Eigen::Index m = B.cols();
+  Rows Y(B.rows(), m);
+  for (int v = 0; v < vertices_; ++v) Y.middleRows<3>(3 * new_of_old_[static_cast<size_t>(v)]) = B.middleRows<3>(3 * v);
+  Block z(3, m);
+  for (int j = 0; j < vertices_; ++j) {
+    auto yj = Y.middleRows<3>(3 * j);
+    if (yj.isZero(0.0)) continue;  // sparse right-hand sides: nothing to carry down
+    z.noalias() = diagonal_inverse_[static_cast<size_t>(j)] * yj;
+    yj = z;
+    for (int p = start_[static_cast<size_t>(j)] + 1; p < start_[static_cast<size_t>(j) + 1]; ++p)
+      Y.middleRows<3>(3 * rows_[static_cast<size_t>(p)]).noalias() -= blocks_[static_cast<size_t>(p)] * z;
+  }
+  for (int j = vertices_ - 1; j >= 0; --j) {
+    z = Y.middleRows<3>(3 * j);
+    for (int p = start_[static_cast<size_t>(j)] + 1; p < start_[static_cast<size_t>(j) + 1]; ++p)
+      z.noalias() -= blocks_[static_cast<size_t>(p)].transpose() * Y.middleRows<3>(3 * rows_[static_cast<size_t>(p)]);
+    Y.middleRows<3>(3 * j).noalias() = diagonal_inverse_[static_cast<size_t>(j)].transpose() * z;
+  }
+  Eigen::MatrixXd X(B.rows(), m);
+  for (int v = 0; v < vertices_; ++v) X.middleRows<3>(3 * v) = Y.middleRows<3>(3 * new_of_old_[static_cast<size_t>(v)]);
   return X;
 }
 
