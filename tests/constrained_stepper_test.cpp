@@ -197,18 +197,17 @@ TEST(EnergyLimitedStepper, LaggedSolvesFallBackToRefactorisation) {
   EXPECT_NEAR(b.rebound_height, a.rebound_height, 1e-6);
 }
 
-TEST(EnergyLimitedStepper, SimplicialFactorOfSmallMatricesGivesCholmodsMotion) {
-  // The beam's matrices (56 hexahedra, short columns of L) are factorised by Eigen's simplicial
-  // LLT, the sphere's (27 hexahedra, nearly dense) by CHOLMOD; forcing CHOLMOD everywhere
-  // (simplicial_below = 0) must give the same motion up to the CG and LCP tolerances, with the
-  // limits and contacts held.
+TEST(EnergyLimitedStepper, BlockFactorOfSmallMatricesGivesCholmodsMotion) {
+  // The beam's and the sphere's matrices (56 and 27 hexahedra) are factorised on 3x3 vertex
+  // blocks (BlockCholesky); forcing CHOLMOD everywhere (simplicial_below = 0) must give the same
+  // motion up to the CG and LCP tolerances, with the limits and contacts held.
   SphereConfig sphere;
   sphere.max_energy = 500.0;
   sphere.duration = 1.5;
   SphereConfig sphere_cholmod = sphere;
   sphere_cholmod.solver.reuse.simplicial_below = 0;
   const SphereResult a = run_falling_sphere(sphere_cholmod), b = run_falling_sphere(sphere);
-  fmt::print("sphere U_e <= 500 J: CHOLMOD {} factorisations + {} CG, simplicial {} + {}; compression {:.6f} / {:.6f}, "
+  fmt::print("sphere U_e <= 500 J: CHOLMOD {} factorisations + {} CG, blocks {} + {}; compression {:.6f} / {:.6f}, "
              "rebound {:.6f} / {:.6f}\n",
              a.totals.factorizations, a.totals.cg_iterations, b.totals.factorizations, b.totals.cg_iterations,
              a.peak_compression, b.peak_compression, a.rebound_height, b.rebound_height);
@@ -226,7 +225,7 @@ TEST(EnergyLimitedStepper, SimplicialFactorOfSmallMatricesGivesCholmodsMotion) {
   BeamConfig beam_cholmod = beam;
   beam_cholmod.solver.reuse.simplicial_below = 0;
   const BeamResult c = run_beam(beam_cholmod), d = run_beam(beam);
-  fmt::print("beam U_e <= 0.5 J: CHOLMOD {} factorisations + {} CG, simplicial {} + {}; tip deflection {:.7f} / {:.7f} m\n",
+  fmt::print("beam U_e <= 0.5 J: CHOLMOD {} factorisations + {} CG, blocks {} + {}; tip deflection {:.7f} / {:.7f} m\n",
              c.totals.factorizations, c.totals.cg_iterations, d.totals.factorizations, d.totals.cg_iterations,
              c.max_tip_deflection, d.max_tip_deflection);
   EXPECT_GT(d.totals.max_active_energy, 0);

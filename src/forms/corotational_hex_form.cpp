@@ -50,19 +50,49 @@ CorotationalHexForm::CorotationalHexForm(std::shared_ptr<const Discretization> d
     K_[e] = K;
     tet_rest_inverse_[e] = tet_edges(d.element_positions(e, X)).inverse();
   }
+  rotations_ = std::make_unique<ElementRotationCache>(d.num_elements());
 }
 
-Mat3 CorotationalHexForm::rotation(Eigen::Index e, const Eigen::VectorXd& x) const {
-  return polar_rotation(tet_edges(disc_->element_positions(e, x)) * tet_rest_inverse_[e]);
+ElementRotationCache::Corners CorotationalHexForm::corners(Eigen::Index e, const Eigen::VectorXd& x) const {
+  const auto& elements = disc_->mesh().elements;
+  ElementRotationCache::Corners c;
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < 3; ++i) c[static_cast<size_t>(3 * k + i)] = x(3 * elements(e, kInnermostTet[k]) + i);
+  return c;
+}
+
+ElementRotation CorotationalHexForm::compute_rotation(Eigen::Index e, const ElementRotationCache::Corners& c) const {
+  Mat3 D;
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) D(i, k) = c[static_cast<size_t>(3 * (k + 1) + i)] - c[static_cast<size_t>(i)];
+  const SignedSvd svd = signed_svd(D * tet_rest_inverse_[e]);
+  return {svd, svd.U * svd.V.transpose()};
+}
+
+ElementRotation CorotationalHexForm::element_rotation(Eigen::Index e, const Eigen::VectorXd& x) const {
+  const ElementRotationCache::Corners c = corners(e, x);
+  ElementRotation r;
+  if (!rotations_->lookup(e, c, r)) r = compute_rotation(e, c);
+  return r;
+}
+
+std::shared_ptr<const std::vector<ElementRotation>> CorotationalHexForm::all_rotations(const Eigen::VectorXd& x) const {
+  return rotations_->refresh(
+      x, [this](Eigen::Index e, const Eigen::VectorXd& y) { return corners(e, y); },
+      [this](Eigen::Index e, const ElementRotationCache::Corners& c) { return compute_rotation(e, c); });
 }
 
 double CorotationalHexForm::element_value(Eigen::Index e, const Eigen::VectorXd& x) const {
+  return element_value(e, x, element_rotation(e, x).R);
+}
+
+double CorotationalHexForm::element_value(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const {
   const Discretization& d = *disc_;
   const Eigen::Matrix3Xd xe = d.element_positions(e, x);
-  const Mat3 Rt = rotation(e, x).transpose();
+  const Eigen::Matrix<double, 3, 8> rotated = R.transpose() * xe;  // R^T x_a, once for all quadrature points
   double U = 0.0;
   for (int q = 0; q < d.quadrature_points(); ++q) {
-    const Mat3 grad_u = Rt * xe * d.gradients(e, q) - Mat3::Identity();  // Eq. 11
+    const Mat3 grad_u = rotated * d.gradients(e, q) - Mat3::Identity();  // Eq. 11
     const Mat3 eps = 0.5 * (grad_u + grad_u.transpose());                 // Eq. 2
     // psi = 1/2 eps : C : eps = 1/2 lambda tr(eps)^2 + mu eps : eps (the E1/E2/E3 terms of Eq. 16).
     U += d.weight(e, q) * (0.5 * c_.E2 * eps.trace() * eps.trace() + c_.E3 * eps.squaredNorm());
@@ -70,14 +100,27 @@ double CorotationalHexForm::element_value(Eigen::Index e, const Eigen::VectorXd&
   return U;
 }
 
+void CorotationalHexForm::element_values(const Eigen::VectorXd& x, std::vector<double>& energies) const {
+  const auto rotations = all_rotations(x);
+  energies.resize(static_cast<size_t>(disc_->num_elements()));
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, disc_->num_elements(), 128), [&](const auto& range) {
+    for (Eigen::Index e = range.begin(); e < range.end(); ++e)
+      energies[static_cast<size_t>(e)] = element_value(e, x, (*rotations)[static_cast<size_t>(e)].R);
+  });
+}
+
 Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eigen::VectorXd& x,
                                                          JacobianKind kind) const {
+  return element_gradient(e, x, kind, element_rotation(e, x));
+}
+
+Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eigen::VectorXd& x, JacobianKind kind,
+                                                         const ElementRotation& rotation) const {
   const Discretization& d = *disc_;
   const Eigen::Matrix3Xd xe = d.element_positions(e, x);
   const Eigen::Matrix3Xd Xe = d.element_positions(e, rest_);
-  const Mat3 F_tet = tet_edges(xe) * tet_rest_inverse_[e];
-  const SignedSvd svd = signed_svd(F_tet);
-  const Mat3 R = svd.U * svd.V.transpose();
+  const SignedSvd& svd = rotation.svd;
+  const Mat3& R = rotation.R;
   // Unrotated displacements d_a = R^T x_a - X_a and rest-frame forces K_e d (Eq. 17 with R fixed:
   // dU/dx_a = R (K_e d)_a, exactly the warped elastic force for psi = 1/2 eps : C : eps).
   Eigen::VectorXd disp(24);
@@ -106,7 +149,7 @@ Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eige
 }
 
 Eigen::MatrixXd CorotationalHexForm::element_hessian(Eigen::Index e, const Eigen::VectorXd& x) const {
-  const Mat3 R = rotation(e, x);
+  const Mat3 R = element_rotation(e, x).R;
   Eigen::MatrixXd H(24, 24);
   for (int a = 0; a < 8; ++a)
     for (int b = 0; b < 8; ++b) H.block<3, 3>(3 * a, 3 * b) = R * K_[e].block<3, 3>(3 * a, 3 * b) * R.transpose();
@@ -114,11 +157,12 @@ Eigen::MatrixXd CorotationalHexForm::element_hessian(Eigen::Index e, const Eigen
 }
 
 double CorotationalHexForm::value(const Eigen::VectorXd& x) const {
+  const auto rotations = all_rotations(x);
   // Deterministic reduction: the same x gives bit-identical energies.
   return tbb::parallel_deterministic_reduce(
       tbb::blocked_range<Eigen::Index>(0, disc_->num_elements(), 64), 0.0,
       [&](const tbb::blocked_range<Eigen::Index>& r, double acc) {
-        for (Eigen::Index e = r.begin(); e != r.end(); ++e) acc += element_value(e, x);
+        for (Eigen::Index e = r.begin(); e != r.end(); ++e) acc += element_value(e, x, (*rotations)[static_cast<size_t>(e)].R);
         return acc;
       },
       std::plus<double>());
@@ -129,30 +173,48 @@ double CorotationalHexForm::value(const Eigen::VectorXd& x) const {
 void CorotationalHexForm::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;
+  const auto rotations = all_rotations(x);
   std::vector<Eigen::Matrix<double, 24, 1>> ge(static_cast<size_t>(d.num_elements()));
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, d.num_elements(), 32), [&](const auto& range) {
     for (Eigen::Index e = range.begin(); e < range.end(); ++e)
-      ge[static_cast<size_t>(e)] = element_gradient(e, x, JacobianKind::Warped);
+      ge[static_cast<size_t>(e)] = element_gradient(e, x, JacobianKind::Warped, (*rotations)[static_cast<size_t>(e)]);
   });
   for (Eigen::Index e = 0; e < d.num_elements(); ++e)
     for (int a = 0; a < 8; ++a) g.segment<3>(3 * elements(e, a)) += ge[static_cast<size_t>(e)].segment<3>(3 * a);
+}
+
+const std::vector<int>& CorotationalHexForm::scatter_map(const BlockHessian& H) const {
+  const std::lock_guard<std::mutex> lock(scatter_mutex_);
+  if (scatter_pattern_ == H.pattern_id() && !scatter_slots_.empty()) return scatter_slots_;
+  const auto& elements = disc_->mesh().elements;
+  scatter_slots_.resize(static_cast<size_t>(disc_->num_elements()) * 64);
+  for (Eigen::Index e = 0; e < disc_->num_elements(); ++e)
+    for (int b = 0; b < 8; ++b)
+      for (int a = 0; a < 8; ++a) {
+        const int k = H.slot(elements(e, a), elements(e, b));
+        if (k < 0) throw Error("an element's vertex pair is not in the Hessian pattern", "assembly");
+        scatter_slots_[static_cast<size_t>(64 * e + 8 * b + a)] = k;
+      }
+  scatter_pattern_ = H.pattern_id();
+  return scatter_slots_;
 }
 
 // Elements of one colour share no vertex, so their blocks are added in parallel.
 void CorotationalHexForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const {
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;
+  const auto rotations = all_rotations(x);
+  const std::vector<int>& slots = scatter_map(H);
   for (const auto& group : d.color_groups()) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, group.size(), 16), [&](const auto& r) {
       for (size_t idx = r.begin(); idx != r.end(); ++idx) {
         const Eigen::Index e = group[idx];
-        const Mat3 R = rotation(e, x);
+        const Mat3& R = (*rotations)[static_cast<size_t>(e)].R;
         const Eigen::MatrixXd& Ke = K_[e];
         for (int b = 0; b < 8; ++b)
-          for (int a = 0; a < 8; ++a) {
-            const int va = elements(e, a), vb = elements(e, b);
-            H.add_block_at_slot(vb, H.slot(va, vb), R * Ke.block<3, 3>(3 * a, 3 * b) * R.transpose());
-          }
+          for (int a = 0; a < 8; ++a)
+            H.add_block_at_slot(elements(e, b), slots[static_cast<size_t>(64 * e + 8 * b + a)],
+                                R * Ke.block<3, 3>(3 * a, 3 * b) * R.transpose());
       }
     });
   }

@@ -12,9 +12,15 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace sinew {
 namespace {
+
+// Below this many elements a step runs on one thread: an element's share of any loop costs
+// about a microsecond, less than waking a worker, and paper 001's 27- and 56-hexahedron scenes
+// spent several percent of their time in oneTBB's dispatch and the workers' wake-ups.
+constexpr Eigen::Index kOneThreadBelow = 128;
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -64,10 +70,8 @@ Linearisation linearise_constraints(const ElementForm& model, const EnergyLimite
   // Element energies, and the Jacobians of the elements that get a row, in parallel. The grains
   // keep small meshes (paper 001's 27 and 56 hexahedra) on one thread: an element costs about a
   // microsecond, less than waking a worker.
-  std::vector<double> energies(static_cast<size_t>(disc.num_elements()));
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, disc.num_elements(), 128), [&](const auto& range) {
-    for (Eigen::Index e = range.begin(); e < range.end(); ++e) energies[static_cast<size_t>(e)] = model.element_value(e, x_k);
-  });
+  std::vector<double> energies;
+  model.element_values(x_k, energies);
   std::vector<Eigen::Index> limited;
   for (Eigen::Index e = 0; e < disc.num_elements(); ++e) {
     const double U = energies[static_cast<size_t>(e)];
@@ -143,6 +147,8 @@ Linearisation linearise_constraints(const ElementForm& model, const EnergyLimite
 // the positions of its 24 x 24 block among A's stored values, so that H = A + element blocks is
 // a copy and indexed additions.
 struct EnergyLimitedStepper::Factorization {
+  // Steps of meshes below kOneThreadBelow elements run here, on the calling thread alone.
+  tbb::task_arena one_thread{1};
   LaggedFactorization backward_euler, lagrangian;
   Eigen::SparseMatrix<double> A, H;
   // Per element (filled when it is first stiffened): the index among A's values of each entry of
@@ -264,6 +270,8 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
 
 EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::VectorXd& v, const std::vector<char>& fixed,
                                                    const Eigen::VectorXd& x_end) {
+  if (limited_->discretization().num_elements() < kOneThreadBelow && tbb::this_task_arena::max_concurrency() > 1)
+    return factor_->one_thread.execute([&] { return step(x, v, fixed, x_end); });
   const auto t_step = Clock::now();
   const SerialOpenMpScope serial_cholmod;
   EnergyLimitedStepReport report;

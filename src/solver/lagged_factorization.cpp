@@ -6,6 +6,7 @@
 
 #include "sinew/core/error.hpp"
 #include "sinew/linalg/linear_operator.hpp"
+#include "sinew/solver/block_cholesky.hpp"
 
 namespace sinew {
 namespace {
@@ -34,6 +35,7 @@ bool short_columns(const Eigen::SparseMatrix<double>& M) {
 struct LaggedFactorization::Backends {
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholmod;
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> simplicial;
+  BlockCholesky block;
 };
 
 LaggedFactorization::LaggedFactorization() : backends_(std::make_unique<Backends>()) {}
@@ -49,7 +51,13 @@ void LaggedFactorization::use(const Eigen::SparseMatrix<double>& M, const Factor
 
 void LaggedFactorization::refactor(Counters& counters) {
   const auto t = Clock::now();
-  if (!analysed_) simplicial_ = current_->rows() < reuse_.simplicial_below && short_columns(*current_);
+  if (!analysed_) {
+    backend_ = Backend::Cholmod;
+    if (current_->rows() < reuse_.simplicial_below)
+      backend_ = BlockCholesky::suits(*current_) ? Backend::Block
+                 : short_columns(*current_)      ? Backend::Simplicial
+                                                 : Backend::Cholmod;
+  }
   // Factorises with the pattern analysed once; again after a new analysis if that fails (the
   // pattern can change when the warped stiffness cancels entries).
   auto factorize = [&](auto& llt) {
@@ -61,19 +69,33 @@ void LaggedFactorization::refactor(Counters& counters) {
     }
     return llt.info() == Eigen::Success;
   };
-  valid_ = simplicial_ ? factorize(backends_->simplicial) : factorize(backends_->cholmod);
+  switch (backend_) {
+    case Backend::Block:
+      if (!analysed_) backends_->block.analyze(*current_);
+      valid_ = backends_->block.factorize(*current_);
+      break;
+    case Backend::Simplicial:
+      valid_ = factorize(backends_->simplicial);
+      break;
+    case Backend::Cholmod:
+      valid_ = factorize(backends_->cholmod);
+      break;
+  }
   analysed_ = true;
   if (!valid_) throw Error("backward-Euler or SQP matrix is not positive definite", "constrained stepper");
   // Flops of a factorisation and nonzeros of L: CHOLMOD counts them; for the simplicial factor,
-  // sum_j c_j^2 over its column counts c_j (the same count CHOLMOD makes).
+  // sum_j c_j^2 over its column counts c_j (the same count CHOLMOD makes), likewise the block one.
   double flops = 0.0, lnz = 0.0;
-  if (simplicial_) {
+  if (backend_ == Backend::Simplicial) {
     const auto& L = backends_->simplicial.matrixL().nestedExpression();
     for (Eigen::Index j = 0; j < L.outerSize(); ++j) {
       const double c = static_cast<double>(L.outerIndexPtr()[j + 1] - L.outerIndexPtr()[j]);
       flops += c * c;
     }
     lnz = static_cast<double>(L.nonZeros());
+  } else if (backend_ == Backend::Block) {
+    flops = backends_->block.flops();
+    lnz = backends_->block.nonzeros();
   } else {
     const cholmod_common& c = backends_->cholmod.cholmod();
     flops = c.fl;
@@ -130,17 +152,28 @@ bool LaggedFactorization::preconditioned_cg(const Eigen::VectorXd& r, Eigen::Vec
 }
 
 Eigen::VectorXd LaggedFactorization::precondition(const Eigen::VectorXd& r) const {
-  return simplicial_ ? Eigen::VectorXd(backends_->simplicial.solve(r)) : Eigen::VectorXd(backends_->cholmod.solve(r));
+  switch (backend_) {
+    case Backend::Block: return backends_->block.solve(r);
+    case Backend::Simplicial: return backends_->simplicial.solve(r);
+    case Backend::Cholmod: break;
+  }
+  return backends_->cholmod.solve(r);
 }
 
 Eigen::MatrixXd LaggedFactorization::apply_inverse(const Eigen::MatrixXd& B) const {
-  return simplicial_ ? Eigen::MatrixXd(backends_->simplicial.solve(B)) : Eigen::MatrixXd(backends_->cholmod.solve(B));
+  switch (backend_) {
+    case Backend::Block: return backends_->block.solve(B);
+    case Backend::Simplicial: return backends_->simplicial.solve(B);
+    case Backend::Cholmod: break;
+  }
+  return backends_->cholmod.solve(B);
 }
 
 Eigen::MatrixXd LaggedFactorization::gram(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J) const {
   const Eigen::Index m = J.rows();
+  if (backend_ == Backend::Block) return backends_->block.gram(J);
   Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(J.cols(), m);
-  if (simplicial_) {
+  if (backend_ == Backend::Simplicial) {
     // Eigen's simplicial factor: P = Perm^-1 L L^T Perm; row r of J^T lands in row Perm(r).
     const auto& llt = backends_->simplicial;
     const auto& perm = llt.permutationP().indices();

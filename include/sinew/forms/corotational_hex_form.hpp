@@ -6,10 +6,13 @@
 // and its Hessian the warped stiffness: both hold the rotation fixed, so they are not the exact
 // derivatives of the energy (exact_derivatives() is false); the exact element gradient is
 // element_gradient(e, x, JacobianKind::Exact).
+#include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "sinew/forms/element_form.hpp"
+#include "sinew/forms/element_rotation_cache.hpp"
 #include "sinew/material/lame.hpp"
 
 namespace sinew {
@@ -35,7 +38,10 @@ class CorotationalHexForm final : public ElementForm {
   const HookeCoefficients& coefficients() const { return c_; }
 
   // R_e from the polar decomposition of the innermost tetrahedron's F.
-  Mat3 rotation(Eigen::Index e, const Eigen::VectorXd& x) const;
+  Mat3 rotation(Eigen::Index e, const Eigen::VectorXd& x) const { return element_rotation(e, x).R; }
+  // Every element's U_e(x) into `energies` (one rotation pass, kept for the per-element calls
+  // at the same x that usually follow: constraint Jacobians, element Hessians).
+  void element_values(const Eigen::VectorXd& x, std::vector<double>& energies) const override;
   // Rest-frame stiffness K_e (24 x 24, node-major), Eq. 10.
   const Eigen::MatrixXd& element_stiffness(Eigen::Index e) const { return K_[e]; }
 
@@ -59,6 +65,22 @@ class CorotationalHexForm final : public ElementForm {
   std::vector<Eigen::MatrixXd> K_;
   Eigen::VectorXd rest_;                // rest positions X
   std::vector<Mat3> tet_rest_inverse_;  // (X_2 - X_0, X_5 - X_0, X_7 - X_0)^-1 per element
+  // The rotations of the last positions a whole-mesh pass saw (value, gradient, Hessian,
+  // element_values); per-element calls at the same positions reuse them.
+  std::unique_ptr<ElementRotationCache> rotations_;
+  // Per element and node pair (b, a): the slot of block (a, b) in the Hessian pattern of the
+  // given id, found once instead of a search per block and assembly.
+  const std::vector<int>& scatter_map(const BlockHessian& H) const;
+  mutable std::mutex scatter_mutex_;
+  mutable std::uint64_t scatter_pattern_ = 0;
+  mutable std::vector<int> scatter_slots_;
+  ElementRotationCache::Corners corners(Eigen::Index e, const Eigen::VectorXd& x) const;
+  ElementRotation compute_rotation(Eigen::Index e, const ElementRotationCache::Corners& c) const;
+  ElementRotation element_rotation(Eigen::Index e, const Eigen::VectorXd& x) const;
+  std::shared_ptr<const std::vector<ElementRotation>> all_rotations(const Eigen::VectorXd& x) const;
+  double element_value(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const;
+  Eigen::VectorXd element_gradient(Eigen::Index e, const Eigen::VectorXd& x, JacobianKind kind,
+                                   const ElementRotation& rotation) const;
 };
 
 }  // namespace sinew

@@ -4,6 +4,7 @@
 // element values, gradients, (PSD) Hessians and element-local Hessian-vector products.
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "sinew/element/discretization.hpp"
 #include "sinew/forms/form.hpp"
@@ -24,6 +25,9 @@ class ElementForm : public Form {
 
   // U_e(x).
   virtual double element_value(Eigen::Index e, const Eigen::VectorXd& x) const = 0;
+  // Every element's U_e(x) (energies resized to the element count), in parallel; a form may
+  // share work between the elements or with later per-element calls at the same x.
+  virtual void element_values(const Eigen::VectorXd& x, std::vector<double>& energies) const;
   // dU_e/dx over the element's nodes (3 * nodes entries, node-major).
   virtual Eigen::VectorXd element_gradient(Eigen::Index e, const Eigen::VectorXd& x,
                                            JacobianKind kind = JacobianKind::Exact) const = 0;
