@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sinew/core/error.hpp"
+#include "sinew/io/deferred_sync.hpp"
 
 namespace sinew {
 namespace fs = std::filesystem;
@@ -136,14 +137,24 @@ void write_file_atomically(const fs::path& path, const std::function<void(std::o
                                     : std::string("write failed: the output stream reported an error"),
                 where);
   }
-  if (::fsync(tmp.fd) != 0) throw Error(fmt::format("write failed: {}", reason(errno)), where);
-  const int fd = tmp.fd;
-  tmp.fd = -1;
-  if (::close(fd) != 0) throw Error(fmt::format("write failed: {}", reason(errno)), where);
+  // In a DeferredSync scope the fsync waits for the batch's sync(): the rename still replaces
+  // the target only with a whole file (a killed process leaves the old one or the new one).
+  DeferredSync* deferred = DeferredSync::current();
+  if (deferred == nullptr) {
+    if (::fsync(tmp.fd) != 0) throw Error(fmt::format("write failed: {}", reason(errno)), where);
+    const int fd = tmp.fd;
+    tmp.fd = -1;
+    if (::close(fd) != 0) throw Error(fmt::format("write failed: {}", reason(errno)), where);
+  }
   if (::rename(tmp.path.c_str(), path.c_str()) != 0) {
     throw Error(fmt::format("cannot replace the file: {}", reason(errno)), where);
   }
   tmp.renamed = true;
+  if (deferred != nullptr) {
+    const int fd = tmp.fd;
+    tmp.fd = -1;
+    deferred->adopt(fd, path);
+  }
 }
 
 int remove_stale_temporary_files(const fs::path& dir) {

@@ -8,7 +8,8 @@
 namespace sinew {
 
 // Runs `writer` on a stream into a fresh temporary file next to `path`, flushes and fsyncs
-// it, then renames it over `path`. On any failure (missing directory, permission denied,
+// it, then renames it over `path` (inside a DeferredSync::Scope, io/deferred_sync.hpp, the
+// fsync is left to the batch's sync()). On any failure (missing directory, permission denied,
 // disk full, a stream error or an exception from `writer`) the temporary file is removed,
 // an existing `path` is left untouched, and a sinew::Error names `path` and the reason.
 void write_file_atomically(const std::filesystem::path& path,
