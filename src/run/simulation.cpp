@@ -133,8 +133,12 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   // this one's pid); temporary files a killed write left there go first.
   std::optional<FolderLock> lock;
   if (writing) {
-    // --resume without a checkpoint fails before the folder is created (read_checkpoint says so).
-    if (options.resume && !has_checkpoint(out)) read_checkpoint(out, fingerprint, integrator, state.x.size(), frames);
+    // --resume without a checkpoint fails before the folder is created (read_checkpoint says so);
+    // into an existing folder, after the lock (a run still writing it, and so perhaps not yet
+    // checkpointed, is named).
+    std::error_code ec;
+    if (options.resume && !std::filesystem::is_directory(out, ec))
+      read_checkpoint(out, fingerprint, integrator, state.x.size(), frames);
     ensure_directory(out);
     lock.emplace(out);
     remove_stale_temporary_files(out);
