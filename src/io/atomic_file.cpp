@@ -157,6 +157,29 @@ void write_file_atomically(const fs::path& path, const std::function<void(std::o
   }
 }
 
+bool link_file_atomically(const fs::path& existing, const fs::path& path) {
+  const std::string where = path.string();
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  fs::path tmp;
+  bool linked = false;
+  for (int attempt = 0; attempt < 100 && !linked; ++attempt) {
+    tmp = dir / temporary_name(path, temporary_counter.fetch_add(1));
+    if (::link(existing.c_str(), tmp.c_str()) == 0) {
+      linked = true;
+    } else if (errno != EEXIST) {
+      return false;  // no hard links here (EPERM, EXDEV, EMLINK, ...) or no source: write instead
+    }
+  }
+  if (!linked) return false;
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw Error(fmt::format("cannot replace the file: {}", reason(err)), where);
+  }
+  if (DeferredSync* deferred = DeferredSync::current()) deferred->adopt_name(path);
+  return true;
+}
+
 int remove_stale_temporary_files(const fs::path& dir) {
   int removed = 0;
   std::error_code ec;

@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
-#include <set>
 #include <system_error>
 
 #include "sinew/core/error.hpp"
@@ -37,14 +36,20 @@ void DeferredSync::adopt(int fd, const std::filesystem::path& path) {
     }
   }
   files_.push_back({fd, path});
+  folders_.insert(path.has_parent_path() ? path.parent_path() : std::filesystem::path("."));
+}
+
+void DeferredSync::adopt_name(const std::filesystem::path& path) {
+  folders_.insert(path.has_parent_path() ? path.parent_path() : std::filesystem::path("."));
 }
 
 void DeferredSync::sync() {
   std::vector<File> files;
   files.swap(files_);
+  std::set<std::filesystem::path> folders;
+  folders.swap(folders_);
   int failed_errno = 0;
   std::string failed_path;
-  std::set<std::filesystem::path> folders;
   for (const File& f : files) {
     // Every descriptor is closed even after a failure; the first failure is reported.
     if (::fsync(f.fd) != 0 && failed_errno == 0) {
@@ -52,7 +57,6 @@ void DeferredSync::sync() {
       failed_path = f.path.string();
     }
     ::close(f.fd);
-    folders.insert(f.path.has_parent_path() ? f.path.parent_path() : std::filesystem::path("."));
   }
   if (failed_errno != 0) throw Error(fmt::format("write failed: {}", reason(failed_errno)), failed_path);
   for (const auto& folder : folders) {

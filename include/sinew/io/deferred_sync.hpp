@@ -6,6 +6,7 @@
 // A run syncs a batch right before the checkpoint that refers to those files (run_scene), so
 // resuming after a crash never depends on a file that did not reach the disk.
 #include <filesystem>
+#include <set>
 #include <vector>
 
 namespace sinew {
@@ -35,7 +36,7 @@ class DeferredSync {
   // batch is emptied either way.
   void sync();
 
-  std::size_t pending() const { return files_.size(); }
+  std::size_t pending() const { return files_.size(); }  // descriptors held
 
   // The scope's batch on this thread, or nullptr (write_file_atomically then fsyncs at once).
   static DeferredSync* current();
@@ -46,12 +47,17 @@ class DeferredSync {
   void adopt(int fd, const std::filesystem::path& path);
   static constexpr std::size_t kMaxPending = 256;
 
+  // Records a new name given to a file whose content is already synced or in the batch (a hard
+  // link): only its folder must be synced.
+  void adopt_name(const std::filesystem::path& path);
+
  private:
   struct File {
     int fd;
     std::filesystem::path path;
   };
   std::vector<File> files_;
+  std::set<std::filesystem::path> folders_;  // of files_ and of the names adopted
 };
 
 }  // namespace sinew
