@@ -11,6 +11,13 @@
 namespace sinew {
 namespace {
 
+RunOptions one_frame_into(const std::filesystem::path& out) {
+  RunOptions o;
+  o.out_dir = out;
+  o.frames = 1;
+  return o;
+}
+
 using nlohmann::json;
 
 json scene_json() {
@@ -30,7 +37,7 @@ TEST(SelectionOutput, ListsTheVerticesAndFacesOfEveryConditionAndLoad) {
   const auto file = dir.write("scene.json", scene_json().dump());
   const Scene scene = load_scene(file);
   const Model model = build_model(scene);
-  const RunSummary r = run_scene(scene, {dir / "out", 1, false, {}, {}, false});
+  const RunSummary r = run_scene(scene, one_frame_into(dir / "out"));
   ASSERT_TRUE(r.all_converged());
   const json j = json::parse(test::read_file(dir / "out" / "selections.json"));
   const VolumeMesh& mesh = model.disc->mesh();
@@ -59,10 +66,10 @@ TEST(SelectionOutput, WrittenOnlyWhenAskedAndRemovedByAFreshRun) {
   test::TempDir dir;
   json j = scene_json();
   const auto out = dir / "out";
-  run_scene(load_scene(dir.write("scene.json", j.dump())), {out, 1, false, {}, {}, false});
+  run_scene(load_scene(dir.write("scene.json", j.dump())), one_frame_into(out));
   ASSERT_TRUE(std::filesystem::exists(out / "selections.json"));
   j["output"].erase("selections");
-  run_scene(load_scene(dir.write("scene.json", j.dump())), {out, 1, false, {}, {}, false});
+  run_scene(load_scene(dir.write("scene.json", j.dump())), one_frame_into(out));
   EXPECT_FALSE(std::filesystem::exists(out / "selections.json"));  // a stale one would mislead
   EXPECT_TRUE(std::filesystem::exists(out / "summary.json"));
 }

@@ -1,5 +1,5 @@
 // `sinew run SCENE.json [--out DIR] [--frames N] [--threads N] [--progress auto|live|plain]
-// [--verbose] [--quiet] [--resume] [--strict] [--viewer]`.
+// [--verbose] [--quiet] [--resume] [--checkpoint-seconds S] [--strict] [--viewer]`.
 #include "cmd_run.hpp"
 
 #include <algorithm>
@@ -18,7 +18,7 @@ namespace sinew::cli {
 namespace {
 
 struct Options {
-  std::string scene, out, frames, threads, progress = "auto";
+  std::string scene, out, frames, threads, checkpoint_seconds, progress = "auto";
   bool quiet = false, verbose = false, resume = false, strict = false, viewer = false;
 };
 
@@ -37,6 +37,7 @@ void run(const Options& o, int& exit_code) {
     if (t < 1 || t > 1024) throw Error(fmt::format("must be between 1 and 1024, got {}", t), "--threads");
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(t));
   }
+  if (!o.checkpoint_seconds.empty()) ro.checkpoint_seconds = parse_number(o.checkpoint_seconds, "--checkpoint-seconds");
   ro.resume = o.resume;
   ro.strict = o.strict;
   if (o.viewer && !scene.output.vtu)
@@ -92,6 +93,9 @@ Command add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--verbose", opts->verbose, "also one line per Newton iteration");
   cmd->add_flag("--quiet", opts->quiet, "only errors and warnings (no progress, no results line)");
   cmd->add_flag("--resume", opts->resume, "continue from the output folder's checkpoint");
+  cmd->add_option("--checkpoint-seconds", opts->checkpoint_seconds,
+                  "wall-clock seconds between checkpoints (default 1; 0: after every frame); the last converged "
+                  "frame is always checkpointed");
   cmd->add_flag("--strict", opts->strict, "treat warnings (e.g. a selector taking every vertex) as errors");
   cmd->add_flag("--viewer", opts->viewer, "also write the browser viewer (viewer.html, viewer.glb; docs/viewer.md)");
   return {cmd, [opts, &exit_code] {

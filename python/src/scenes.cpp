@@ -211,7 +211,7 @@ is the JSON as a dict: change a copy and build a new scene with Scene.from_dict.
   m.def(
       "run",
       [](const Scene& scene, const std::optional<std::filesystem::path>& out, const std::optional<int>& frames, bool resume,
-         const py::object& progress, bool strict) {
+         const py::object& progress, bool strict, double checkpoint_seconds) {
         RunOptions options;
         if (out) options.out_dir = *out;
         if (frames) {
@@ -221,6 +221,7 @@ is the JSON as a dict: change a copy and build a new scene with Scene.from_dict.
         }
         options.resume = resume;
         options.strict = strict;
+        options.checkpoint_seconds = checkpoint_seconds;
         options.warning = [](const std::string& message) {
           py::gil_scoped_acquire gil;
           warn(message);
@@ -237,9 +238,10 @@ is the JSON as a dict: change a copy and build a new scene with Scene.from_dict.
         return run_scene(scene, options);
       },
       py::arg("scene"), py::arg("out") = py::none(), py::arg("frames") = py::none(), py::arg("resume") = false,
-      py::arg("progress") = py::none(), py::arg("strict") = false,
+      py::arg("progress") = py::none(), py::arg("strict") = false, py::arg("checkpoint_seconds") = 1.0,
       "Runs a scene as `sinew run` does: with `out`, writes its outputs there (frames, surfaces, "
-      "simulation.pvd, summary.json, checkpoint; `resume` continues from the checkpoint), without it writes "
+      "simulation.pvd, summary.json, checkpoint; `resume` continues from the checkpoint, written every "
+      "`checkpoint_seconds` of wall clock and for the last converged frame), without it writes "
       "nothing. `frames` overrides the scene's frame count; `progress(event)` is called at every Newton "
       "iteration and frame end. The model's warnings are issued as sinew.SceneWarning (errors with `strict`, "
       "like --strict). Ctrl-C stops the run (KeyboardInterrupt).");

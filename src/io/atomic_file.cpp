@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sinew/core/error.hpp"
+#include "sinew/io/deferred_sync.hpp"
 
 namespace sinew {
 namespace fs = std::filesystem;
@@ -136,14 +137,47 @@ void write_file_atomically(const fs::path& path, const std::function<void(std::o
                                     : std::string("write failed: the output stream reported an error"),
                 where);
   }
-  if (::fsync(tmp.fd) != 0) throw Error(fmt::format("write failed: {}", reason(errno)), where);
-  const int fd = tmp.fd;
-  tmp.fd = -1;
-  if (::close(fd) != 0) throw Error(fmt::format("write failed: {}", reason(errno)), where);
+  // In a DeferredSync scope the fsync waits for the batch's sync(): the rename still replaces
+  // the target only with a whole file (a killed process leaves the old one or the new one).
+  DeferredSync* deferred = DeferredSync::current();
+  if (deferred == nullptr) {
+    if (::fsync(tmp.fd) != 0) throw Error(fmt::format("write failed: {}", reason(errno)), where);
+    const int fd = tmp.fd;
+    tmp.fd = -1;
+    if (::close(fd) != 0) throw Error(fmt::format("write failed: {}", reason(errno)), where);
+  }
   if (::rename(tmp.path.c_str(), path.c_str()) != 0) {
     throw Error(fmt::format("cannot replace the file: {}", reason(errno)), where);
   }
   tmp.renamed = true;
+  if (deferred != nullptr) {
+    const int fd = tmp.fd;
+    tmp.fd = -1;
+    deferred->adopt(fd, path);
+  }
+}
+
+bool link_file_atomically(const fs::path& existing, const fs::path& path) {
+  const std::string where = path.string();
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  fs::path tmp;
+  bool linked = false;
+  for (int attempt = 0; attempt < 100 && !linked; ++attempt) {
+    tmp = dir / temporary_name(path, temporary_counter.fetch_add(1));
+    if (::link(existing.c_str(), tmp.c_str()) == 0) {
+      linked = true;
+    } else if (errno != EEXIST) {
+      return false;  // no hard links here (EPERM, EXDEV, EMLINK, ...) or no source: write instead
+    }
+  }
+  if (!linked) return false;
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw Error(fmt::format("cannot replace the file: {}", reason(err)), where);
+  }
+  if (DeferredSync* deferred = DeferredSync::current()) deferred->adopt_name(path);
+  return true;
 }
 
 int remove_stale_temporary_files(const fs::path& dir) {

@@ -1,7 +1,5 @@
 #include "sinew/mesh/tetrahedralize_surface.hpp"
 
-#include <gmsh.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,27 +10,14 @@
 #include <unordered_map>
 #include <vector>
 
+#include "gmsh_module_loader.hpp"
 #include "sinew/core/error.hpp"
 
 namespace sinew {
 namespace {
 
-constexpr int kGmshTriangle = 2;     // Gmsh element type numbers
-constexpr int kGmshTetrahedron = 4;
-
-// Gmsh keeps one global model: calls are serialised and the library is finalised on every
-// exit path.
+// Gmsh keeps one global model: calls are serialised.
 std::mutex gmsh_mutex;
-struct GmshSession {
-  GmshSession() {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 0);
-  }
-  ~GmshSession() { gmsh::finalize(); }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
 
 }  // namespace
 
@@ -108,66 +93,44 @@ VolumeMesh tetrahedralize_surface(const TriangleSurface& input, double max_edge)
   // max_edge are split first, in their own plane: the boundary is then that split surface, on
   // which every input vertex (and so an embedded render surface) still lies exactly.
   const TriangleSurface surface = bisect_long_edges(input, max_edge);
-  std::lock_guard lock(gmsh_mutex);
+  gmsh_module::Input in;
+  in.max_edge = max_edge;
+  in.coords.reserve(3 * static_cast<size_t>(surface.num_vertices()));
+  for (Eigen::Index v = 0; v < surface.num_vertices(); ++v)
+    for (int i = 0; i < 3; ++i) in.coords.push_back(surface.vertices(v, i));
+  for (Eigen::Index f = 0; f < surface.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) in.triangles.push_back(static_cast<std::size_t>(surface.faces(f, k) + 1));
+  const gmsh_module::TetrahedralizeFn gmsh_tetrahedralize = load_gmsh_module();
+  gmsh_module::Output out;
+  {
+    std::lock_guard lock(gmsh_mutex);
+    gmsh_tetrahedralize(in, out);
+  }
+  if (!out.error.empty()) throw Error(fmt::format("Gmsh failed: {}", out.error), where);
+  if (out.tet_nodes.empty()) throw Error("Gmsh produced no tetrahedra", where);
+  if (out.tet_nodes.size() % 4 != 0 || out.node_coords.size() != 3 * out.node_tags.size())
+    throw Error("Gmsh returned inconsistent arrays", where);
   VolumeMesh mesh;
   mesh.kind = ElementKind::Tet4;
-  try {
-    GmshSession session;
-    gmsh::model::add("sinew");
-    const int s = gmsh::model::addDiscreteEntity(2);
-    std::vector<std::size_t> tags(static_cast<size_t>(surface.num_vertices()));
-    std::vector<double> coords;
-    coords.reserve(3 * tags.size());
-    for (Eigen::Index v = 0; v < surface.num_vertices(); ++v) {
-      tags[static_cast<size_t>(v)] = static_cast<std::size_t>(v + 1);
-      for (int i = 0; i < 3; ++i) coords.push_back(surface.vertices(v, i));
+  // Only the nodes tetrahedra use, numbered in first-use order.
+  std::unordered_map<std::size_t, std::size_t> position_of;
+  for (std::size_t i = 0; i < out.node_tags.size(); ++i) position_of[out.node_tags[i]] = i;
+  std::unordered_map<std::size_t, int> index_of;
+  std::vector<std::size_t> used;
+  const std::size_t tets = out.tet_nodes.size() / 4;
+  mesh.elements.resize(static_cast<Eigen::Index>(tets), 4);
+  for (std::size_t e = 0; e < tets; ++e)
+    for (int a = 0; a < 4; ++a) {
+      const std::size_t tag = out.tet_nodes[4 * e + a];
+      auto [it, fresh] = index_of.try_emplace(tag, static_cast<int>(used.size()));
+      if (fresh) used.push_back(tag);
+      mesh.elements(static_cast<Eigen::Index>(e), a) = it->second;
     }
-    gmsh::model::mesh::addNodes(2, s, tags, coords);
-    std::vector<std::size_t> triangles;
-    for (Eigen::Index f = 0; f < surface.num_faces(); ++f)
-      for (int k = 0; k < 3; ++k) triangles.push_back(static_cast<std::size_t>(surface.faces(f, k) + 1));
-    gmsh::model::mesh::addElementsByType(s, kGmshTriangle, {}, triangles);
-    // The discrete surface closes the volume as it is: no reparametrisation (which fails for
-    // surfaces without boundary curves, such as a sphere), so the input triangles stay.
-    const int loop = gmsh::model::geo::addSurfaceLoop({s});
-    gmsh::model::geo::addVolume({loop});
-    gmsh::model::geo::synchronize();
-    gmsh::option::setNumber("Mesh.MeshSizeMax", max_edge);
-    gmsh::model::mesh::generate(3);
-
-    std::vector<std::size_t> node_tags;
-    std::vector<double> node_coords, parametric;
-    gmsh::model::mesh::getNodes(node_tags, node_coords, parametric, -1, -1, true, false);
-    std::vector<std::size_t> element_tags, element_nodes;
-    gmsh::model::mesh::getElementsByType(kGmshTetrahedron, element_tags, element_nodes);
-    if (element_tags.empty()) throw Error("Gmsh produced no tetrahedra", where);
-    // Only the nodes tetrahedra use, numbered in first-use order.
-    std::unordered_map<std::size_t, std::size_t> position_of;
-    for (std::size_t i = 0; i < node_tags.size(); ++i) position_of[node_tags[i]] = i;
-    std::unordered_map<std::size_t, int> index_of;
-    std::vector<std::size_t> used;
-    mesh.elements.resize(static_cast<Eigen::Index>(element_tags.size()), 4);
-    for (std::size_t e = 0; e < element_tags.size(); ++e)
-      for (int a = 0; a < 4; ++a) {
-        const std::size_t tag = element_nodes[4 * e + a];
-        auto [it, fresh] = index_of.try_emplace(tag, static_cast<int>(used.size()));
-        if (fresh) used.push_back(tag);
-        mesh.elements(static_cast<Eigen::Index>(e), a) = it->second;
-      }
-    mesh.vertices.resize(static_cast<Eigen::Index>(used.size()), 3);
-    for (std::size_t v = 0; v < used.size(); ++v) {
-      const auto it = position_of.find(used[v]);
-      if (it == position_of.end()) throw Error(fmt::format("Gmsh returned no coordinates for node {}", used[v]), where);
-      for (int i = 0; i < 3; ++i) mesh.vertices(static_cast<Eigen::Index>(v), i) = node_coords[3 * it->second + i];
-    }
-  } catch (const Error&) {
-    throw;
-  } catch (const std::string& message) {  // how the Gmsh API reports its errors
-    throw Error(fmt::format("Gmsh failed: {}", message), where);
-  } catch (const std::exception& e) {
-    throw Error(fmt::format("Gmsh failed: {}", e.what()), where);
-  } catch (...) {
-    throw Error("Gmsh failed", where);
+  mesh.vertices.resize(static_cast<Eigen::Index>(used.size()), 3);
+  for (std::size_t v = 0; v < used.size(); ++v) {
+    const auto it = position_of.find(used[v]);
+    if (it == position_of.end()) throw Error(fmt::format("Gmsh returned no coordinates for node {}", used[v]), where);
+    for (int i = 0; i < 3; ++i) mesh.vertices(static_cast<Eigen::Index>(v), i) = out.node_coords[3 * it->second + i];
   }
   mesh.validate(where);
   return mesh;

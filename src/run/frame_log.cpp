@@ -45,7 +45,10 @@ void FrameLog::append(const FrameRecord& record) {
     if (n < 0) throw Error(fmt::format("write failed: {}", reason(errno)), file_.string());
     done += static_cast<std::size_t>(n);
   }
-  // On the disk before the checkpoint of this frame is: a resume finds every frame it claims.
+}
+
+void FrameLog::sync() {
+  // Called before a checkpoint is written: a resume finds every frame the checkpoint claims.
   if (::fdatasync(fd_) != 0) throw Error(fmt::format("write failed: {}", reason(errno)), file_.string());
 }
 

@@ -60,6 +60,7 @@ FrameOutput::FrameOutput(const Scene& scene, const Model& model, std::filesystem
 
 void FrameOutput::resume_after(int last_frame, const std::function<double(int)>& time_of) {
   pvd_.clear();
+  pvd_changed_ = true;
   if (!scene_.output.vtu) return;
   for (int frame = 0; frame <= last_frame; frame += scene_.output.every)
     pvd_.emplace_back(time_of(frame), fmt::format("frame_{:04d}.vtu", frame));
@@ -82,13 +83,19 @@ void FrameOutput::write(int frame, double time, const State& state) {
     write_vtu(out_ / name, mesh, state.x, vf);
     std::erase_if(pvd_, [&](const auto& e) { return e.second == name; });
     pvd_.emplace_back(time, name);
-    // ParaView's time: seconds in dynamics, the frame number in quasistatics (stated in the file).
-    write_pvd(out_ / "simulation.pvd", pvd_, model_.integrator->dynamic() ? PvdTime::Seconds : PvdTime::Frames);
+    pvd_changed_ = true;
   }
   if (scene_.output.obj) write_surface_obj(out_ / fmt::format("surface_{:04d}.obj", frame), mesh, model_.surface, state.x);
   if (embedded_.active())
     embedded_.write(out_, frame, state.x, *model_.disc, &fields->J, fields->stress_norm.size() ? &fields->stress_norm : nullptr);
   shapes_.write(out_, frame);
+}
+
+void FrameOutput::write_collection() {
+  if (out_.empty() || !scene_.output.vtu || !pvd_changed_) return;
+  // ParaView's time: seconds in dynamics, the frame number in quasistatics (stated in the file).
+  write_pvd(out_ / "simulation.pvd", pvd_, model_.integrator->dynamic() ? PvdTime::Seconds : PvdTime::Frames);
+  pvd_changed_ = false;
 }
 
 }  // namespace sinew

@@ -27,6 +27,7 @@ Session::Session(Scene scene, std::filesystem::path out_dir, bool strict)
     remove_previous_outputs(out_);
     ensure_directory(out_);
     output_->write(0, 0.0, state_);
+    output_->write_collection();
   }
 }
 
@@ -43,6 +44,7 @@ const FrameRecord& Session::step(const IterationProgress& progress) {
   const FrameRecord& record = summary_.frames.back();
   if (!out_.empty()) {
     output_->write(frame_, record.time, state_);
+    output_->write_collection();  // a stepped session may stop at any frame: the .pvd stays current
     write_summary(out_, scene_, model_, summary_, frame_);
   }
   return record;

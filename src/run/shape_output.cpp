@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <cctype>
 #include <set>
+#include <utility>
 
+#include "sinew/io/atomic_file.hpp"
 #include "sinew/io/obj_writer.hpp"
 #include "sinew/io/vtk_writer.hpp"
 #include "sinew/motion/bone_surface.hpp"
@@ -46,14 +48,30 @@ ShapeOutput::ShapeOutput(const Scene& scene, const VolumeMesh& mesh) : vtu_(scen
   for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v) focus_.extend(mesh.vertices.row(v).transpose());
 }
 
-void ShapeOutput::write(const std::filesystem::path& out, int frame) const {
-  auto write_one = [&](const std::string& stem, const TriangleSurface& s) {
-    if (vtu_) write_surface_vtu(out / fmt::format("{}_{:04d}.vtu", stem, frame), s);
-    if (obj_) write_obj(out / fmt::format("{}_{:04d}.obj", stem, frame), s.vertices, s.faces);
+namespace {
+
+bool same_surface(const TriangleSurface& a, const TriangleSurface& b) {
+  return a.vertices.rows() == b.vertices.rows() && a.faces.rows() == b.faces.rows() && a.vertices == b.vertices &&
+         a.faces == b.faces;
+}
+
+}  // namespace
+
+void ShapeOutput::write(const std::filesystem::path& out, int frame) {
+  written_.resize(stems_.size());
+  auto write_one = [&](size_t k, TriangleSurface s) {
+    std::optional<Written>& last = written_[k];
+    const bool unchanged = last && same_surface(last->surface, s);
+    Written now{std::move(s), out / fmt::format("{}_{:04d}.vtu", stems_[k], frame),
+                out / fmt::format("{}_{:04d}.obj", stems_[k], frame)};
+    if (vtu_ && !(unchanged && link_file_atomically(last->vtu, now.vtu))) write_surface_vtu(now.vtu, now.surface);
+    if (obj_ && !(unchanged && link_file_atomically(last->obj, now.obj)))
+      write_obj(now.obj, now.surface.vertices, now.surface.faces);
+    last = std::move(now);
   };
   size_t k = 0;
-  for (const Obstacle& o : obstacles_) write_one(stems_[k++], o.surface_at(frame, focus_));
-  for (const Bone* b : bones_) write_one(stems_[k++], bone_surface_at(*b, frame));
+  for (const Obstacle& o : obstacles_) write_one(k++, o.surface_at(frame, focus_));
+  for (const Bone* b : bones_) write_one(k++, bone_surface_at(*b, frame));
 }
 
 }  // namespace sinew

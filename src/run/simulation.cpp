@@ -1,15 +1,18 @@
 #include "sinew/run/simulation.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <fmt/format.h>
 #include <optional>
 #include <regex>
 
 #include "sinew/core/error.hpp"
 #include "sinew/io/atomic_file.hpp"
+#include "sinew/io/deferred_sync.hpp"
 #include "sinew/io/folder_lock.hpp"
 #include "sinew/model/model.hpp"
 #include "sinew/run/checkpoint.hpp"
+#include "sinew/run/checkpoint_schedule.hpp"
 #include "sinew/run/frame_log.hpp"
 #include "sinew/run/frame_output.hpp"
 #include "sinew/run/run_summary.hpp"
@@ -100,6 +103,9 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   const int frames = options.frames.value_or(scene.frames);
   if (frames < 1) throw Error(fmt::format("must be at least 1, got {}", frames), "--frames");
   if (options.resume && options.out_dir.empty()) throw Error("resuming needs an output directory", "--resume");
+  if (!(options.checkpoint_seconds >= 0.0) || !std::isfinite(options.checkpoint_seconds))
+    throw Error(fmt::format("must be a finite number of seconds >= 0 (0: after every frame), got {}", options.checkpoint_seconds),
+                "--checkpoint-seconds");
 
   // ---- model: every input problem surfaces here, before a file is written
   Model model = build_model(scene);
@@ -127,8 +133,12 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   // this one's pid); temporary files a killed write left there go first.
   std::optional<FolderLock> lock;
   if (writing) {
-    // --resume without a checkpoint fails before the folder is created (read_checkpoint says so).
-    if (options.resume && !has_checkpoint(out)) read_checkpoint(out, fingerprint, integrator, state.x.size(), frames);
+    // --resume without a checkpoint fails before the folder is created (read_checkpoint says so);
+    // into an existing folder, after the lock (a run still writing it, and so perhaps not yet
+    // checkpointed, is named).
+    std::error_code ec;
+    if (options.resume && !std::filesystem::is_directory(out, ec))
+      read_checkpoint(out, fingerprint, integrator, state.x.size(), frames);
     ensure_directory(out);
     lock.emplace(out);
     remove_stale_temporary_files(out);
@@ -147,17 +157,27 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
   }
   if (writing && scene.output.selections) write_selections(out / "selections.json", scene, model);
   // What is written per frame costs the same at frame 10 and at frame 100,000: the frame's
-  // files, one line of frames.jsonl, the checkpoint (the state alone). summary.json lists every
-  // frame, so it is rewritten only when the frame count has doubled since its last writing (at
-  // most twice the frames in all), at the end, and when the run stops on an error.
+  // files, one line of frames.jsonl, now and then a checkpoint (the state alone). summary.json
+  // lists every frame, so it is rewritten only when the frame count has doubled since its last
+  // writing (at most twice the frames in all), at the end, and when the run stops on an error.
+  // The frames' files and those summaries reach the disk in batches, before each checkpoint
+  // (checkpoint_schedule.hpp); the final summary is written through at once.
   std::optional<FrameLog> log;
   if (writing) log.emplace(out, summary.frames);
+  DeferredSync frame_files;
+  std::optional<CheckpointSchedule> checkpoints;
+  if (writing)
+    checkpoints.emplace(out, fingerprint, integrator, options.checkpoint_seconds, *log, output, frame_files);
   std::size_t summary_due = 1;
   auto write_summary_now = [&] {
     write_summary(out, scene, model, summary, frames);
     summary_due = 2 * summary.frames.size();
   };
-  if (first_frame == 1) output.write(0, frame_time(0), state);
+  auto write_frame_files = [&](int frame, double time) {
+    DeferredSync::Scope batch(frame_files);
+    output.write(frame, time, state);
+  };
+  if (first_frame == 1) write_frame_files(0, frame_time(0));
 
   // ---- one frame loop for every integrator
   try {
@@ -171,19 +191,27 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
       FrameRecord record = simulate_frame(model, state, frame, progress);
       record.residuals = std::move(residuals);
       summary.frames.push_back(record);
-      output.write(frame, record.time, state);
+      write_frame_files(frame, record.time);
       if (writing) {
         log->append(record);
-        // Only after a converged frame, so --resume never continues from a failed state.
-        if (record.converged) write_checkpoint(out, fingerprint, integrator, {frame, state, integrator.checkpoint_state()});
-        if (summary.frames.size() >= summary_due) write_summary_now();
+        // Only a converged frame, so --resume never continues from a failed state.
+        if (record.converged) checkpoints->converged({frame, state, integrator.checkpoint_state()});
+        if (summary.frames.size() >= summary_due) {
+          DeferredSync::Scope batch(frame_files);
+          write_summary_now();
+        }
       }
       if (options.progress) options.progress({frame, frames, record.newton_iterations, record.residual, elapsed(), true, &summary.frames.back()});
       if (!record.converged) break;  // later frames would start from an unsolved state
     }
   } catch (...) {
-    // The frames before the error still get their summary; the error is what the caller sees.
+    // The frames before the error still get their checkpoint and summary; the error is what
+    // the caller sees.
     if (writing) {
+      try {
+        checkpoints->commit();
+      } catch (...) {
+      }
       try {
         write_summary_now();
       } catch (...) {
@@ -191,7 +219,10 @@ RunSummary run_scene(const Scene& scene, const RunOptions& options) {
     }
     throw;
   }
-  if (writing) write_summary_now();
+  if (writing) {
+    checkpoints->commit();  // the last converged frame (a failed frame's run stops above)
+    write_summary_now();
+  }
   summary.x = state.x;
   return summary;
 }

@@ -21,7 +21,7 @@ cat >"$TMP/bar.json" <<'EOF'
 EOF
 
 expect_ok run --help
-for flag in --out --frames --threads --progress --verbose --quiet --resume scene-format.md; do
+for flag in --out --frames --threads --progress --verbose --quiet --resume --checkpoint-seconds scene-format.md; do
   grep -q -- "$flag" "$TMP/out" || fail "run --help lacks $flag"
 done
 
@@ -97,6 +97,14 @@ cmp -s "$TMP/a/frame_0004.vtu" "$TMP/r/frame_0004.vtu" || fail "resumed run diff
 grep -c "<DataSet " "$TMP/r/simulation.pvd" | grep -qx 5 || fail "resumed simulation.pvd does not list 5 frames"
 "$PY" -c "import json,sys; d=json.load(open(sys.argv[1])); assert [f['frame'] for f in d['frames']] == [1,2,3,4], d['frames']" \
   "$TMP/r/summary.json" || fail "resumed summary.json frames"
+# --checkpoint-seconds 0 checkpoints every frame, a long interval only the last one; both resume.
+expect_ok run "$TMP/bar.json" --out "$TMP/c0" --frames 2 --checkpoint-seconds 0 --quiet
+expect_ok run "$TMP/bar.json" --out "$TMP/c0" --resume --checkpoint-seconds 1e6 --quiet
+cmp -s "$TMP/a/frame_0004.vtu" "$TMP/c0/frame_0004.vtu" || fail "run resumed with --checkpoint-seconds differs"
+"$PY" -c "import json,sys; assert json.load(open(sys.argv[1]))['frame'] == 4" "$TMP/c0/checkpoint.json" ||
+  fail "the last frame was not checkpointed"
+expect_error "--checkpoint-seconds: expected a number, got 'soon'" run "$TMP/bar.json" --out "$TMP/c1" --checkpoint-seconds soon
+expect_error "--checkpoint-seconds: must be a finite number of seconds >= 0" run "$TMP/bar.json" --out "$TMP/c1" --checkpoint-seconds=-1
 # A changed scene cannot be resumed.
 sed 's/"frames": 4/"frames": 5/' "$TMP/bar.json" >"$TMP/bar5.json"
 cp "$TMP/r/checkpoint.json" "$TMP/cp.json"

@@ -67,6 +67,20 @@ def test_errors_carry_the_cli_message(case, cli, tmp_path):
     assert str(e.value) == cli_message
 
 
+def test_run_checkpoints_as_often_as_asked(tmp_path):
+    scene = sinew.Scene.from_dict(stretch_scene())
+    seen = []
+
+    def progress(e):
+        if e.frame_done:
+            seen.append(json.loads((tmp_path / "checkpoint.json").read_text())["frame"])
+
+    sinew.run(scene, out=str(tmp_path), frames=2, progress=progress, checkpoint_seconds=0)
+    assert seen == [1, 2]
+    with pytest.raises(sinew.Error, match="checkpoint-seconds"):
+        sinew.run(scene, out=str(tmp_path / "bad"), frames=1, checkpoint_seconds=-1)
+
+
 def test_run_writes_the_cli_outputs_and_returns_records(tmp_path):
     scene = sinew.Scene.from_dict(stretch_scene())
     events = []
@@ -74,6 +88,7 @@ def test_run_writes_the_cli_outputs_and_returns_records(tmp_path):
     assert result.all_converged and len(result.frames) == 2
     for name in ("frame_0000.vtu", "frame_0002.vtu", "simulation.pvd", "summary.json", "checkpoint.json"):
         assert (tmp_path / name).exists(), name
+    assert json.loads((tmp_path / "checkpoint.json").read_text())["frame"] == 2  # the last frame, always
     summary = json.loads((tmp_path / "summary.json").read_text())
     assert [f["frame"] for f in summary["frames"]] == [1, 2]
     assert summary["frames"][1] == result.frames[1].to_dict()

@@ -1,6 +1,6 @@
 #pragma once
-// out/frames.jsonl: one line per finished frame (the record of run_summary.hpp), appended and
-// written through to the disk as each frame ends. It is what keeps a run's cost per frame from
+// out/frames.jsonl: one line per finished frame (the record of run_summary.hpp), appended as
+// each frame ends (`tail -f` follows it) and made durable before each checkpoint. It is what keeps a run's cost per frame from
 // growing with the frames before it: summary.json, which lists every frame, is rewritten only at
 // frame counts that double and at the end, and the checkpoint holds the state alone; a resumed
 // run takes its earlier frames from here.
@@ -22,9 +22,11 @@ class FrameLog {
   FrameLog(const FrameLog&) = delete;
   FrameLog& operator=(const FrameLog&) = delete;
 
-  // Appends the record as one line and waits until it reached the disk; a sinew::Error names the
-  // file and the reason.
+  // Appends the record as one line (one write(2)); a sinew::Error names the file and the reason.
   void append(const FrameRecord& record);
+
+  // Waits until every appended line reached the disk (before a checkpoint that counts them).
+  void sync();
 
  private:
   std::filesystem::path file_;

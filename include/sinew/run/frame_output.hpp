@@ -1,6 +1,7 @@
 #pragma once
 // The per-frame output files of a run, whatever its integrator: the volume mesh with its fields
-// (frame_NNNN.vtu, listed in simulation.pvd), the boundary surface (surface_NNNN.obj), the
+// (frame_NNNN.vtu, listed in simulation.pvd, which is rewritten only by write_collection: the
+// list grows with the frames, so writing it every frame would cost the run O(frames^2)), the boundary surface (surface_NNNN.obj), the
 // embedded render surface (embedded_surface_*, run/embedded_surface_output.hpp) and the
 // obstacles and bones (run/shape_output.hpp), every `output.every` frames.
 #include <filesystem>
@@ -23,6 +24,10 @@ class FrameOutput {
 
   void write(int frame, double time, const State& state);
 
+  // Writes simulation.pvd, listing every .vtu written so far, if that list changed since it was
+  // last written (the run calls it at each checkpoint and at its end).
+  void write_collection();
+
   // A run resumed after `last_frame`: simulation.pvd lists the frames 0..last_frame the scene's
   // output settings wrote, at time_of(frame), before the frames to come.
   void resume_after(int last_frame, const std::function<double(int)>& time_of);
@@ -34,6 +39,7 @@ class FrameOutput {
   EmbeddedSurfaceOutput embedded_;
   ShapeOutput shapes_;
   std::vector<std::pair<double, std::string>> pvd_;
+  bool pvd_changed_ = false;
 };
 
 // Per-element fields of a state: the elastic energy (integrated), the volume-averaged energy

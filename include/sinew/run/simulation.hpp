@@ -55,6 +55,9 @@ struct RunOptions {
   std::filesystem::path out_dir;  // empty: write nothing
   std::optional<int> frames;      // overrides the scene's frame count
   bool resume = false;            // continue from out_dir's checkpoint
+  // Wall-clock seconds between checkpoints, 0: after every converged frame; the last converged
+  // frame is always checkpointed (run/checkpoint_schedule.hpp).
+  double checkpoint_seconds = 1.0;
   std::function<void(const ProgressEvent&)> progress;
   std::function<void(const std::string&)> warning;  // each of the model's warnings, before the first frame
   bool strict = false;                              // warnings are errors
