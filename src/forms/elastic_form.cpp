@@ -10,6 +10,7 @@
 
 #include "sinew/core/error.hpp"
 #include "sinew/element/fixed_element.hpp"
+#include "hex_invariant_stiffness.hpp"
 
 namespace sinew {
 namespace {
@@ -30,7 +31,29 @@ auto with_nodes(int nodes, const Body& body) {
 
 ElasticForm::ElasticForm(std::shared_ptr<const Discretization> disc,
                          std::shared_ptr<const Material> material, Projection projection)
-    : disc_(std::move(disc)), material_(std::move(material)), projection_(projection) {}
+    : disc_(std::move(disc)), material_(std::move(material)), projection_(projection) {
+  const Discretization& d = *disc_;
+  if (d.nodes() == 8 && d.quadrature_points() == 8) invariant_ = dynamic_cast<const InvariantMaterial*>(material_.get());
+  // One gradient set per rest shape when shapes repeat (3 kB each); else built per element.
+  if (invariant_ && d.num_rest_shapes() * 8 <= d.num_elements()) {
+    shape_lanes_.resize(static_cast<size_t>(d.num_rest_shapes()));
+    std::vector<char> done(shape_lanes_.size(), 0);
+    for (Eigen::Index e = 0; e < d.num_elements(); ++e) {
+      const auto s = static_cast<size_t>(d.rest_shape(e));
+      if (!done[s]) shape_lanes_[s] = hex_gradient_lanes(d, e);
+      done[s] = 1;
+    }
+  }
+}
+
+ElasticForm::~ElasticForm() = default;
+
+const HexGradientLanes* ElasticForm::hex_lanes(Eigen::Index e, HexGradientLanes& scratch) const {
+  if (!invariant_) return nullptr;
+  if (!shape_lanes_.empty()) return &shape_lanes_[static_cast<size_t>(disc_->rest_shape(e))];
+  scratch = hex_gradient_lanes(*disc_, e);
+  return &scratch;
+}
 
 double ElasticForm::value(const Eigen::VectorXd& x) const {
   return with_nodes(disc_->nodes(), [&](auto nodes) { return value_fixed<decltype(nodes)::value>(x); });
@@ -101,10 +124,20 @@ void ElasticForm::for_each_element_stiffness(const Eigen::VectorXd& x, Projectio
   for (const auto& group : d.color_groups()) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, group.size(), 32), [&](const auto& r) {
       fixed_element::SymmetricBlocks<N> K;
+      HexGradientLanes scratch;
       for (size_t idx = r.begin(); idx != r.end(); ++idx) {
         const Eigen::Index e = group[idx];
         const auto xe = positions<N>(d, e, x);
         K.set_zero();
+        if constexpr (N == 8) {
+          // The batched kernel where it applies; the generic loop below reports bad points.
+          const HexGradientLanes* lanes = hex_lanes(e, scratch);
+          if (lanes && add_hex_invariant_stiffness(*invariant_, projection, *lanes, xe, K)) {
+            K.symmetrize_diagonal();
+            body(e, K);
+            continue;
+          }
+        }
         for (int q = 0; q < d.quadrature_points(); ++q) {
           const auto D = gradients<N>(d, e, q);
           fixed_element::add_stiffness<N>(D, material_->projected_hessian(xe * D, projection), d.weight(e, q), K);

@@ -27,6 +27,8 @@ class Discretization {
   // e.g. every cell of a lattice) share one set of gradients and weights: the number of
   // distinct sets kept.
   Eigen::Index num_rest_shapes() const { return static_cast<Eigen::Index>(weight_.size()) / qpoints_; }
+  // Index of element e's rest shape among the num_rest_shapes() sets.
+  int rest_shape(Eigen::Index e) const { return shape_[static_cast<size_t>(e)]; }
   double rest_volume(Eigen::Index e) const;
 
   // Node positions of element e from the DOF vector x (3 x nodes).

@@ -12,10 +12,13 @@
 
 namespace sinew {
 
+struct HexGradientLanes;  // forms/hex_invariant_stiffness.hpp (internal)
+
 class ElasticForm final : public ElementForm {
  public:
   ElasticForm(std::shared_ptr<const Discretization> disc, std::shared_ptr<const Material> material,
               Projection projection = Projection::Clamp);
+  ~ElasticForm() override;
 
   std::string name() const override { return "elastic"; }
   double value(const Eigen::VectorXd& x) const override;
@@ -70,8 +73,15 @@ class ElasticForm final : public ElementForm {
   // pattern of H; rebuilt when the pattern changes.
   const std::vector<std::uint16_t>& scatter_map(const BlockHessian& H) const;
 
+  // The batched hexahedron kernel's gradients (forms/hex_invariant_stiffness.hpp), one set per
+  // rest shape when the mesh has few (a lattice has one); null when the kernel does not apply
+  // (not 8-node, 8-point hexahedra of an invariant material).
+  const HexGradientLanes* hex_lanes(Eigen::Index e, HexGradientLanes& scratch) const;
+
   std::shared_ptr<const Discretization> disc_;
   std::shared_ptr<const Material> material_;
+  const InvariantMaterial* invariant_ = nullptr;  // material_ when it is one
+  std::vector<HexGradientLanes> shape_lanes_;  // per rest shape, when few
   Projection projection_;
   ElementMatrixCache element_matrices_;
   mutable std::mutex scatter_mutex_;
