@@ -90,10 +90,10 @@ template <int N>
 void ElasticForm::add_gradient_fixed(const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;
-  for (const auto& group : d.color_groups()) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, group.size(), 64), [&](const auto& r) {
-      for (size_t idx = r.begin(); idx != r.end(); ++idx) {
-        const Eigen::Index e = group[idx];
+  for (const auto& runs : d.run_colors()) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, runs.size(), 1), [&](const auto& r) {
+      for (size_t run = r.begin(); run != r.end(); ++run)
+      for (Eigen::Index e = runs[run].first; e != runs[run].end; ++e) {
         const auto xe = positions<N>(d, e, x);
         Eigen::Matrix<double, 3, N> ge = Eigen::Matrix<double, 3, N>::Zero(3, d.nodes());
         for (int q = 0; q < d.quadrature_points(); ++q) {
@@ -121,12 +121,12 @@ void ElasticForm::add_hessian_projected(const Eigen::VectorXd& x, BlockHessian& 
 template <int N, class Body>
 void ElasticForm::for_each_element_stiffness(const Eigen::VectorXd& x, Projection projection, const Body& body) const {
   const Discretization& d = *disc_;
-  for (const auto& group : d.color_groups()) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, group.size(), 32), [&](const auto& r) {
+  for (const auto& runs : d.run_colors()) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, runs.size(), 1), [&](const auto& r) {
       fixed_element::SymmetricBlocks<N> K;
       HexGradientLanes scratch;
-      for (size_t idx = r.begin(); idx != r.end(); ++idx) {
-        const Eigen::Index e = group[idx];
+      for (size_t run = r.begin(); run != r.end(); ++run)
+      for (Eigen::Index e = runs[run].first; e != runs[run].end; ++e) {
         const auto xe = positions<N>(d, e, x);
         K.set_zero();
         if constexpr (N == 8) {
@@ -154,8 +154,8 @@ void ElasticForm::add_hessian_fixed(const Eigen::VectorXd& x, BlockHessian& H, P
   const auto& elements = disc_->mesh().elements;
   const std::vector<std::uint16_t>& slots = scatter_map(H);
   for_each_element_stiffness<N>(x, projection, [&](Eigen::Index e, const fixed_element::SymmetricBlocks<N>& K) {
-    // Upper blocks only; the lower ones are their transposes (K is symmetric). Elements of
-    // one colour group share no vertex, so no two tasks write the same block.
+    // Upper blocks only; the lower ones are their transposes (K is symmetric). Runs of one
+    // colour share no vertex, so no two tasks write the same block.
     const std::uint16_t* slot = slots.data() + static_cast<size_t>(e) * N * N;
     for (int a = 0; a < N; ++a) {
       const int va = elements(e, a);
