@@ -75,7 +75,10 @@ class CorotationalHexForm final : public ElementForm {
   mutable std::uint64_t scatter_pattern_ = 0;
   mutable std::vector<int> scatter_slots_;
   ElementRotationCache::Corners corners(Eigen::Index e, const Eigen::VectorXd& x) const;
-  ElementRotation compute_rotation(Eigen::Index e, const ElementRotationCache::Corners& c) const;
+  // From the corners; `warm` (a rotation of the element at other corners, or null) starts a
+  // Newton iteration, with the SVD as fallback.
+  ElementRotation compute_rotation(Eigen::Index e, const ElementRotationCache::Corners& c,
+                                   const ElementRotation* warm) const;
   ElementRotation element_rotation(Eigen::Index e, const Eigen::VectorXd& x) const;
   std::shared_ptr<const std::vector<ElementRotation>> all_rotations(const Eigen::VectorXd& x) const;
   double element_value(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const;
