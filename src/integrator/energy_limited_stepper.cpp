@@ -60,7 +60,8 @@ struct Linearisation {
 Linearisation linearise_constraints(const ElementForm& model, const EnergyLimitedStepSettings& settings,
                                     const std::vector<char>& fixed, const ContactProvider& contacts, double time,
                                     const Eigen::VectorXd& x_k, const Eigen::VectorXd& v_k,
-                                    const std::map<long, char>& ever_active, bool final_iteration) {
+                                    const std::map<long, char>& ever_active, bool final_iteration,
+                                    bool rows_even_if_satisfied = false) {
   const double h = settings.time_step;
   const Discretization& disc = model.discretization();
   const auto& elements = disc.mesh().elements;
@@ -85,7 +86,7 @@ Linearisation linearise_constraints(const ElementForm& model, const EnergyLimite
   const std::vector<ContactCandidate> candidates = contacts ? contacts(x_k, time, time + h) : std::vector<ContactCandidate>{};
   for (const ContactCandidate& c : candidates) lin.penetration = std::max(lin.penetration, -c.gap);
   lin.satisfied = lin.energy_violation <= settings.energy_tolerance && lin.penetration <= settings.contact_tolerance;
-  if (lin.satisfied || final_iteration) return lin;
+  if ((lin.satisfied && !rows_even_if_satisfied) || final_iteration) return lin;
   std::vector<Eigen::VectorXd> jacobians(limited.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, limited.size(), 32), [&](const auto& range) {
     for (size_t i = range.begin(); i < range.end(); ++i) jacobians[i] = energy_constraint_jacobian(model, limited[i], x_k, *limit);
@@ -352,23 +353,41 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   std::map<long, char> ever_active;
   Eigen::SparseMatrix<double>& H = factor_->H;
   auto t_lcp = Clock::now();
+  // The predictor: where the previous step showed the constraints' nonlinearity (two or more SQP
+  // iterations, or an active energy limit), its constraint correction v - v* is the best guess of
+  // this step's, so
+  // the first linearisation is made at v* + that correction instead of v*: fewer SQP iterations
+  // with the same acceptance test. v* itself is still tested first (energies and contacts only),
+  // and taken as the step's answer when it satisfies the constraints, as without the predictor.
+  const bool predict = settings_.sqp_predictor && settings_.sqp_max_iterations > 0 && predictor_.size() == n;
+  bool predicted = false;  // v_k != v* (then the LCP's gradient term g = A (v_k - v*) is not zero)
   for (int k = 0;; ++k) {
-    const Eigen::VectorXd x_k = x0 + h * v_k;
-    const Linearisation lin = linearise_constraints(*limited_, settings_, fixed, contacts_, time_, x_k, v_k, ever_active,
-                                                    k >= settings_.sqp_max_iterations);
-    const std::vector<Row>& rows = lin.rows;
-    const double energy_violation = lin.energy_violation;
-    const double penetration = lin.penetration;
-    report.energy_violation = std::max(0.0, energy_violation);
-    report.penetration = penetration;
-    report.max_element_energy = lin.max_energy;
-    const bool satisfied = lin.satisfied;
-    if (satisfied || k >= settings_.sqp_max_iterations) {
-      report.converged = satisfied;
+    Eigen::VectorXd x_k = x0 + h * v_k;
+    const bool check_only = k == 0 && predict;
+    Linearisation lin = linearise_constraints(*limited_, settings_, fixed, contacts_, time_, x_k, v_k, ever_active,
+                                              k >= settings_.sqp_max_iterations || check_only);
+    if (check_only && !lin.satisfied) {
+      v_k = v_star + predictor_;
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (fixed[i]) v_k(i) = v_star(i);
+      x_k = x0 + h * v_k;
+      predicted = true;
+      // Rows also where the guess already satisfies the constraints: it is not the step's answer.
+      lin = linearise_constraints(*limited_, settings_, fixed, contacts_, time_, x_k, v_k, ever_active, false, true);
+    } else if (lin.satisfied || k >= settings_.sqp_max_iterations) {
+      const double energy_violation = lin.energy_violation;
+      report.energy_violation = std::max(0.0, energy_violation);
+      report.penetration = lin.penetration;
+      report.max_element_energy = lin.max_energy;
+      report.converged = lin.satisfied;
       v = v_k;
       multipliers_ = k > 0 ? warm : std::map<long, double>{};
       break;
     }
+    const std::vector<Row>& rows = lin.rows;
+    report.energy_violation = std::max(0.0, lin.energy_violation);
+    report.penetration = lin.penetration;
+    report.max_element_energy = lin.max_energy;
 
     // ---- quadratic model: H = A plus the curvature of the energy constraints with lambda > 0
     bool stiffened = false;
@@ -408,7 +427,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     } else if (current != &A) {
       use(A, factor_->backward_euler);
     }
-    const Eigen::VectorXd g = k == 0 ? Eigen::VectorXd::Zero(n) : Eigen::VectorXd(A * (v_k - v_star));
+    const Eigen::VectorXd g = k == 0 && !predicted ? Eigen::VectorXd::Zero(n) : Eigen::VectorXd(A * (v_k - v_star));
 
     // ---- LCP (Eq. 23) with W = J H^-1 J^T
     const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
@@ -548,6 +567,13 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     v_k += u;  // Eq. 21 for k = 0
   }
   report.lcp_seconds = since(t_lcp);
+  // The next step's predictor: this step's correction, where the constraints' nonlinearity
+  // showed (two or more SQP iterations, or an active energy limit). Contacts alone are linear in
+  // the positions (a plane's exactly): one iteration answers them, a guess would only cost.
+  if (report.sqp_iterations >= 2 || (report.sqp_iterations >= 1 && report.active_energy > 0))
+    predictor_ = v - v_star;
+  else
+    predictor_.resize(0);
   report.factorizations = counters.factorizations;
   report.cg_iterations = counters.cg_iterations;
   report.factor_seconds = counters.factor_seconds;

@@ -48,6 +48,10 @@ struct EnergyLimitedStepSettings {
   int sqp_max_iterations = 20;
   double energy_tolerance = 1e-3;   // accept U_e <= (1 + tol) U_max
   double contact_tolerance = 1e-4;  // accept penetration up to this depth (m)
+  // Where the previous step needed two or more SQP iterations or had an active energy limit,
+  // linearise first at v* plus its correction v - v* (when v* itself violates a constraint);
+  // the same acceptance test (energy_limited_stepper.cpp).
+  bool sqp_predictor = true;
   FactorizationReuse reuse;
 };
 
@@ -135,6 +139,7 @@ class EnergyLimitedStepper {
   EnergyLimitedStepSettings settings_;
   std::unique_ptr<Factorization> factor_;
   std::map<long, double> multipliers_;  // of the last step's final LCP, by constraint key
+  Eigen::VectorXd predictor_;           // the last step's v - v* (empty: no prediction)
   double time_ = 0.0;
 };
 
