@@ -169,7 +169,39 @@ struct EnergyLimitedStepper::Factorization {
     slots_outer.assign(outer, outer + A.outerSize() + 1);
     slots_inner.assign(inner, inner + A.nonZeros());
     block_slots.clear();
+    scatter_valid = false;
   }
+  // Where A = h^2 K becomes M + h^2 K with the fixed DOFs' rows and columns replaced by identity
+  // ones: the value positions to clear and, per DOF, its diagonal's position and what is added
+  // there (its mass, or 1 on a fixed DOF). Valid for the pattern above and the fixed mask.
+  struct Scatter {
+    std::vector<int> cleared, diagonal;
+    std::vector<double> diagonal_add;
+  };
+  Scatter scatter_map;
+  std::vector<char> scatter_fixed;
+  bool scatter_valid = false;
+  const Scatter& scatter(const std::vector<char>& fixed, const Eigen::VectorXd& masses) {
+    if (scatter_valid && scatter_fixed == fixed) return scatter_map;
+    Scatter& s = scatter_map;
+    s.cleared.clear();
+    s.diagonal.assign(static_cast<size_t>(A.outerSize()), -1);
+    s.diagonal_add.resize(static_cast<size_t>(A.outerSize()));
+    for (Eigen::Index c = 0; c < A.outerSize(); ++c)
+      for (int k = A.outerIndexPtr()[c]; k < A.outerIndexPtr()[c + 1]; ++k) {
+        const Eigen::Index r = A.innerIndexPtr()[k];
+        if (fixed[static_cast<size_t>(r)] || fixed[static_cast<size_t>(c)]) s.cleared.push_back(k);
+        if (r == c) s.diagonal[static_cast<size_t>(c)] = k;
+      }
+    for (Eigen::Index c = 0; c < A.outerSize(); ++c) {
+      if (s.diagonal[static_cast<size_t>(c)] < 0) throw Error("a vertex belongs to no element", "constrained stepper");
+      s.diagonal_add[static_cast<size_t>(c)] = fixed[static_cast<size_t>(c)] ? 1.0 : masses(c);
+    }
+    scatter_fixed = fixed;
+    scatter_valid = true;
+    return s;
+  }
+
   const std::vector<int>& slots(const Discretization& disc, Eigen::Index e) {
     block_slots.resize(static_cast<size_t>(disc.num_elements()));
     std::vector<int>& s = block_slots[static_cast<size_t>(e)];
@@ -300,17 +332,13 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   A *= h * h;
   Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * f0;
   if (v_fixed.squaredNorm() > 0.0) b -= A * v_fixed + mass_dofs_.cwiseProduct(v_fixed);
-  // A = M + h^2 K in K's own storage: rows and columns of fixed DOFs become identity rows.
-  Eigen::Index diagonal_found = 0;
-  for (Eigen::Index k = 0; k < A.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      if (fixed[it.row()] || fixed[it.col()]) it.valueRef() = 0.0;
-      if (it.row() == it.col()) {
-        it.valueRef() += fixed[k] ? 1.0 : mass_dofs_(k);
-        ++diagonal_found;
-      }
-    }
-  if (diagonal_found != n) throw Error("a vertex belongs to no element", "constrained stepper");
+  // A = M + h^2 K in K's own storage: rows and columns of fixed DOFs become identity rows. The
+  // positions of the entries to clear and of the diagonal are found once per pattern and mask.
+  const Factorization::Scatter& scatter = factor_->scatter(fixed, mass_dofs_);
+  double* a_values = A.valuePtr();
+  for (const int k : scatter.cleared) a_values[k] = 0.0;
+  for (std::size_t i = 0; i < scatter.diagonal.size(); ++i)
+    a_values[scatter.diagonal[i]] += scatter.diagonal_add[i];
   for (Eigen::Index i = 0; i < n; ++i)
     if (fixed[i]) b(i) = v_fixed(i);
   const FactorizationReuse& reuse = settings_.reuse;

@@ -30,6 +30,31 @@ bool short_columns(const Eigen::SparseMatrix<double>& M) {
          static_cast<double>(trial.matrixL().nestedExpression().nonZeros()) <= kSimplicialMeanColumn * M.rows();
 }
 
+// y = M x for the symmetric stepper matrices in compressed column storage (column c dotted with
+// x is row c of M x), serial: CG's products on the small matrices this class mostly sees are a
+// few microseconds. Four partial sums per column break the chain of dependent additions that a
+// single running sum makes (each waiting for the previous one), fixed order: deterministic.
+void symmetric_product4(const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  const int* outer = M.outerIndexPtr();
+  const int* inner = M.innerIndexPtr();
+  const double* values = M.valuePtr();
+  const double* xs = x.data();
+  y.resize(M.rows());
+  for (Eigen::Index c = 0; c < M.outerSize(); ++c) {
+    const int begin = outer[c], end = outer[c + 1];
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    int k = begin;
+    for (; k + 4 <= end; k += 4) {
+      s0 += values[k] * xs[inner[k]];
+      s1 += values[k + 1] * xs[inner[k + 1]];
+      s2 += values[k + 2] * xs[inner[k + 2]];
+      s3 += values[k + 3] * xs[inner[k + 3]];
+    }
+    for (; k < end; ++k) s0 += values[k] * xs[inner[k]];
+    y[c] = (s0 + s1) + (s2 + s3);
+  }
+}
+
 }  // namespace
 
 struct LaggedFactorization::Backends {
@@ -126,17 +151,26 @@ bool LaggedFactorization::preconditioned_cg(const Eigen::VectorXd& r, Eigen::Vec
   if (!guess || r_norm == 0.0) out.setZero(n);
   if (r_norm == 0.0) return true;
   const double target = reuse_.cg_tolerance * r_norm;
+  // Below simplicial_below rows (the matrices the small factorisations serve) the product runs
+  // serially with four partial sums; larger ones use the parallel SparseOperator.
   const SparseOperator op(*current_);
+  const bool small = current_->rows() < reuse_.simplicial_below && current_->isCompressed();
+  auto apply = [&](const Eigen::VectorXd& p, Eigen::VectorXd& y) {
+    if (small)
+      symmetric_product4(*current_, p, y);
+    else
+      op.apply(p, y);
+  };
   Eigen::VectorXd res = r, Ap(n);
   if (guess) {
-    op.apply(out, Ap);
+    apply(out, Ap);
     res -= Ap;
   }
   if (res.norm() <= target) return true;
   Eigen::VectorXd z = precondition(res), p = z;
   double rz = res.dot(z);
   for (int it = 0; it < reuse_.max_cg_iterations; ++it) {
-    op.apply(p, Ap);
+    apply(p, Ap);
     const double alpha = rz / p.dot(Ap);
     out += alpha * p;
     res -= alpha * Ap;
