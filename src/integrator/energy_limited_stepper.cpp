@@ -425,27 +425,40 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
         if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
         const std::vector<int>& slots = factor_->slots(disc, key);
         const Eigen::MatrixXd He = limited_->element_hessian(key, x_k) * (h * lambda_e / limit->max_energy);
+        bool any_fixed = false, any_free = false;
+        for (int a = 0; a < disc.nodes(); ++a)
+          for (int i = 0; i < 3; ++i) {
+            const bool f = fixed[static_cast<size_t>(3 * elements(key, a) + i)] != 0;
+            any_fixed = any_fixed || f;
+            any_free = any_free || !f;
+          }
+        if (!any_free) continue;  // every entry has a fixed row or column
+        if (!stiffened) {
+          // H = A: same pattern (A holds every element block), so A's values are copied into H's
+          // storage, kept from earlier steps.
+          const bool same_pattern =
+              H.isCompressed() && H.outerSize() == A.outerSize() && H.nonZeros() == A.nonZeros() &&
+              std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, H.outerIndexPtr()) &&
+              std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), H.innerIndexPtr());
+          if (same_pattern)
+            std::copy(A.valuePtr(), A.valuePtr() + A.nonZeros(), H.valuePtr());
+          else
+            H = A;
+          stiffened = true;
+        }
         double* values = H.valuePtr();
+        const double* he = He.data();  // column-major: entry (r, c) at c * dofs + r
+        if (!any_fixed) {
+          for (int c = 0; c < dofs; ++c)
+            for (int r = 0; r < dofs; ++r) values[slots[static_cast<size_t>(r * dofs + c)]] += he[c * dofs + r];
+          continue;
+        }
         for (int a = 0; a < disc.nodes(); ++a)
           for (int o = 0; o < disc.nodes(); ++o)
             for (int i = 0; i < 3; ++i)
               for (int j = 0; j < 3; ++j) {
                 const Eigen::Index r = 3 * elements(key, a) + i, c = 3 * elements(key, o) + j;
                 if (fixed[r] || fixed[c]) continue;
-                if (!stiffened) {
-                  // H = A: same pattern (A holds every element block), so A's values are copied
-                  // into H's storage, kept from earlier steps.
-                  const bool same_pattern =
-                      H.isCompressed() && H.outerSize() == A.outerSize() && H.nonZeros() == A.nonZeros() &&
-                      std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, H.outerIndexPtr()) &&
-                      std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), H.innerIndexPtr());
-                  if (same_pattern)
-                    std::copy(A.valuePtr(), A.valuePtr() + A.nonZeros(), H.valuePtr());
-                  else
-                    H = A;
-                  values = H.valuePtr();
-                  stiffened = true;
-                }
                 values[slots[static_cast<size_t>((3 * a + i) * dofs + 3 * o + j)]] += He(3 * a + i, 3 * o + j);
               }
       }
