@@ -125,6 +125,10 @@ class EnergyLimitedStepper {
   // first Lagrangian Hessian. A resumed run restores them with the positions and velocities.
   const std::map<long, double>& multipliers() const { return multipliers_; }
   void set_multipliers(std::map<long, double> multipliers) { multipliers_ = std::move(multipliers); }
+  // The SQP predictor of the next step (the last step's v - v*, or empty): a resumed run
+  // restores it with the multipliers, so that it takes the steps an uninterrupted one takes.
+  const Eigen::VectorXd& predictor() const { return predictor_; }
+  void set_predictor(Eigen::VectorXd predictor) { predictor_ = std::move(predictor); }
 
   const EnergyLimitedStepSettings& settings() const { return settings_; }
   const ElementForm& limited_form() const { return *limited_; }
