@@ -234,4 +234,55 @@ TEST(EnergyLimitedStepper, BlockFactorOfSmallMatricesGivesCholmodsMotion) {
   EXPECT_LE(d.totals.max_element_energy, 0.5 * (1.0 + beam.solver.energy_tolerance));
 }
 
+TEST(EnergyLimitedStepper, SqpPredictorGivesTheSameMotionInFewerIterations) {
+  // The predictor linearises a step first at v* plus the previous step's correction v - v*
+  // (where that step showed the energy limits' nonlinearity). Same acceptance test, so the same
+  // motion up to the SQP tolerances, in fewer SQP iterations; contact-only steps are untouched.
+  BeamConfig beam;
+  beam.max_energy = 0.5;
+  beam.duration = 1.0;
+  BeamConfig beam_plain = beam;
+  beam_plain.solver.sqp_predictor = false;
+  const BeamResult a = run_beam(beam_plain), b = run_beam(beam);
+  fmt::print("beam U_e <= 0.5 J: without predictor {} SQP, {} factorisations, tip deflection {:.7f} m; with {} SQP, {}, "
+             "{:.7f} m\n",
+             a.totals.sqp_iterations, a.totals.factorizations, a.max_tip_deflection, b.totals.sqp_iterations,
+             b.totals.factorizations, b.max_tip_deflection);
+  EXPECT_GT(b.totals.max_active_energy, 0);
+  EXPECT_EQ(b.totals.unconverged_steps, 0);
+  EXPECT_LT(b.totals.sqp_iterations, a.totals.sqp_iterations * 3 / 4);
+  EXPECT_LT(b.totals.factorizations, a.totals.factorizations);
+  EXPECT_NEAR(b.max_tip_deflection, a.max_tip_deflection, 1e-4 * a.max_tip_deflection);
+  EXPECT_LE(b.totals.max_element_energy, 0.5 * (1.0 + beam.solver.energy_tolerance));
+
+  SphereConfig sphere;
+  sphere.max_energy = 500.0;
+  sphere.duration = 1.5;
+  SphereConfig sphere_plain = sphere;
+  sphere_plain.solver.sqp_predictor = false;
+  const SphereResult c = run_falling_sphere(sphere_plain), d = run_falling_sphere(sphere);
+  fmt::print("sphere U_e <= 500 J: without predictor {} SQP, compression {:.6f}, rebound {:.6f}; with {} SQP, {:.6f}, "
+             "{:.6f}\n",
+             c.totals.sqp_iterations, c.peak_compression, c.rebound_height, d.totals.sqp_iterations, d.peak_compression,
+             d.rebound_height);
+  EXPECT_GT(d.totals.max_active_energy, 0);
+  EXPECT_GT(d.totals.max_active_contacts, 0);
+  EXPECT_EQ(d.totals.unconverged_steps, 0);
+  EXPECT_LT(d.totals.sqp_iterations, c.totals.sqp_iterations);
+  EXPECT_NEAR(d.peak_compression, c.peak_compression, 1e-3);
+  EXPECT_NEAR(d.rebound_height, c.rebound_height, 1e-3);
+  EXPECT_LE(d.max_penetration, sphere.solver.contact_tolerance);
+  EXPECT_LE(d.totals.max_element_energy, 500.0 * (1.0 + sphere.solver.energy_tolerance));
+
+  SphereConfig linear;  // contacts only: no prediction, the very same steps
+  linear.duration = 1.5;
+  SphereConfig linear_plain = linear;
+  linear_plain.solver.sqp_predictor = false;
+  const SphereResult e = run_falling_sphere(linear_plain), f = run_falling_sphere(linear);
+  EXPECT_EQ(f.totals.sqp_iterations, e.totals.sqp_iterations);
+  EXPECT_EQ(f.totals.pgs_iterations, e.totals.pgs_iterations);
+  EXPECT_EQ(f.peak_compression, e.peak_compression);
+  EXPECT_EQ(f.rebound_height, e.rebound_height);
+}
+
 }  // namespace sinew

@@ -266,8 +266,14 @@ TEST(SceneConstraints, ResumeContinuesFromTheCheckpointToTheSameMotion) {
   ASSERT_TRUE(whole.all_converged() && resumed.all_converged());
   ASSERT_EQ(resumed.frames.size(), 6u);
   EXPECT_LT((whole.x - resumed.x).cwiseAbs().maxCoeff(), 1e-6);  // metres, on a 0.4 m beam
-  for (size_t i = 0; i < 3; ++i)
-    EXPECT_EQ(resumed.frames[i].counter("sqp_iterations"), whole.frames[i].counter("sqp_iterations"));
+  // The checkpoint keeps the multipliers and the SQP predictor: the resumed frames take the
+  // uninterrupted run's SQP iterations and end with its constraint errors (without the predictor
+  // the first resumed step starts elsewhere: same SQP counts here, frame 4's largest energy
+  // violation 1.5e-4 instead of 7.2e-4).
+  for (size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(resumed.frames[i].counter("sqp_iterations"), whole.frames[i].counter("sqp_iterations")) << i;
+    EXPECT_NEAR(resumed.frames[i].residual, whole.frames[i].residual, 1e-7) << i;
+  }
   const json s = json::parse(std::ifstream(part.out_dir / "summary.json"));
   EXPECT_EQ(s["frames_completed"], 6);
   EXPECT_EQ(s["frames"].size(), 6u);

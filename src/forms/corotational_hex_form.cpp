@@ -1,6 +1,8 @@
 #include "sinew/forms/corotational_hex_form.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -16,6 +18,51 @@ Mat3 tet_edges(const Eigen::Matrix3Xd& xe) {
   Mat3 D;
   for (int k = 0; k < 3; ++k) D.col(k) = xe.col(kInnermostTet[k + 1]) - xe.col(kInnermostTet[0]);
   return D;
+}
+
+// The polar decomposition F = R S by Newton's method on the rotation, from a nearby rotation R0
+// (the element's rotation at the previous iterate or step): with S_k = R_k^T F and
+// R_{k+1} = R_k exp([w]x), the skew part of S vanishes to first order for
+// (tr S_k I - sym S_k) w = axial(S_k - S_k^T) (the identity [w]x S + S [w]x = [(tr S I - S) w]x
+// for symmetric S). Quadratic convergence: from a rotation a few degrees off, three or four
+// iterations reach the rounding level. R is kept as a unit quaternion, so it stays a rotation to
+// rounding whatever the number of updates. Returns false (the caller takes the SVD) where F is
+// inverted or nearly degenerate, where the iteration does not settle, or where it settled on a
+// stationary point of tr(R^T F) other than its maximum (S not positive definite): for det F > 0
+// the maximum is the polar factor, U V^T of the rotation-variant SVD, and S = V Sigma V^T.
+bool warm_polar(const Mat3& F, const Mat3& R0, Mat3& R, Mat3& S) {
+  const double size2 = F.squaredNorm();
+  if (!(F.determinant() > 1e-6 * size2 * std::sqrt(size2))) return false;
+  Eigen::Quaterniond q(R0);
+  q.normalize();
+  R = q.toRotationMatrix();
+  bool converged = false;
+  for (int it = 0; it < 8 && !converged; ++it) {
+    S.noalias() = R.transpose() * F;
+    const Vec3 a(S(2, 1) - S(1, 2), S(0, 2) - S(2, 0), S(1, 0) - S(0, 1));
+    if (a.squaredNorm() <= 1e-30 * size2) {  // symmetric to rounding
+      converged = true;
+      break;
+    }
+    const Mat3 sym = 0.5 * (S + S.transpose());
+    const Mat3 M = sym.trace() * Mat3::Identity() - sym;
+    const Vec3 w = M.inverse() * a;
+    const double angle2 = w.squaredNorm();
+    if (!(angle2 < 1.0)) return false;  // far from the start, or M singular: the SVD decides
+    // exp([w]x) to second order (q' = q (1, w/2), normalised): a retraction, so the convergence
+    // stays quadratic, without trigonometry.
+    q = q * Eigen::Quaterniond(1.0, 0.5 * w.x(), 0.5 * w.y(), 0.5 * w.z());
+    q.normalize();
+    R = q.toRotationMatrix();
+    if (angle2 <= 1e-26) {  // this update was at the rounding level
+      S.noalias() = R.transpose() * F;
+      converged = true;
+    }
+  }
+  if (!converged) return false;
+  S = 0.5 * (S + S.transpose()).eval();
+  // Positive definite (leading minors; det S = det F > 0 already).
+  return S(0, 0) > 0.0 && S(0, 0) * S(1, 1) - S(0, 1) * S(1, 0) > 0.0;
 }
 
 }  // namespace
@@ -36,7 +83,7 @@ CorotationalHexForm::CorotationalHexForm(std::shared_ptr<const Discretization> d
   tet_rest_inverse_.resize(d.num_elements());
   for (Eigen::Index e = 0; e < d.num_elements(); ++e) {
     // K_ab = sum_q w (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I), g = dN/dX (Eq. 10).
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(24, 24);
+    ElementMatrix K = ElementMatrix::Zero();
     for (int q = 0; q < d.quadrature_points(); ++q) {
       const Eigen::MatrixX3d& G = d.gradients(e, q);
       const double w = d.weight(e, q);
@@ -61,43 +108,63 @@ ElementRotationCache::Corners CorotationalHexForm::corners(Eigen::Index e, const
   return c;
 }
 
-ElementRotation CorotationalHexForm::compute_rotation(Eigen::Index e, const ElementRotationCache::Corners& c) const {
+ElementRotation CorotationalHexForm::compute_rotation(Eigen::Index e, const ElementRotationCache::Corners& c,
+                                                      const ElementRotation* warm) const {
   Mat3 D;
   for (int k = 0; k < 3; ++k)
     for (int i = 0; i < 3; ++i) D(i, k) = c[static_cast<size_t>(3 * (k + 1) + i)] - c[static_cast<size_t>(i)];
-  const SignedSvd svd = signed_svd(D * tet_rest_inverse_[e]);
-  return {svd, svd.U * svd.V.transpose()};
+  const Mat3 F = D * tet_rest_inverse_[e];
+  ElementRotation r;
+  if (warm && warm_polar(F, warm->R, r.R, r.S)) return r;
+  const SignedSvd svd = signed_svd(F);
+  r.R = svd.U * svd.V.transpose();
+  r.S = svd.V * svd.sigma.asDiagonal() * svd.V.transpose();
+  return r;
 }
 
 ElementRotation CorotationalHexForm::element_rotation(Eigen::Index e, const Eigen::VectorXd& x) const {
   const ElementRotationCache::Corners c = corners(e, x);
   ElementRotation r;
-  if (!rotations_->lookup(e, c, r)) r = compute_rotation(e, c);
+  bool stale = false;
+  if (!rotations_->lookup(e, c, r, &stale)) r = compute_rotation(e, c, stale ? &r : nullptr);
   return r;
 }
 
 std::shared_ptr<const std::vector<ElementRotation>> CorotationalHexForm::all_rotations(const Eigen::VectorXd& x) const {
   return rotations_->refresh(
       x, [this](Eigen::Index e, const Eigen::VectorXd& y) { return corners(e, y); },
-      [this](Eigen::Index e, const ElementRotationCache::Corners& c) { return compute_rotation(e, c); });
+      [this](Eigen::Index e, const ElementRotationCache::Corners& c, const ElementRotation* warm) {
+        return compute_rotation(e, c, warm);
+      });
 }
 
 double CorotationalHexForm::element_value(Eigen::Index e, const Eigen::VectorXd& x) const {
   return element_value(e, x, element_rotation(e, x).R);
 }
 
-double CorotationalHexForm::element_value(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const {
-  const Discretization& d = *disc_;
-  const Eigen::Matrix3Xd xe = d.element_positions(e, x);
-  const Eigen::Matrix<double, 3, 8> rotated = R.transpose() * xe;  // R^T x_a, once for all quadrature points
-  double U = 0.0;
-  for (int q = 0; q < d.quadrature_points(); ++q) {
-    const Mat3 grad_u = rotated * d.gradients(e, q) - Mat3::Identity();  // Eq. 11
-    const Mat3 eps = 0.5 * (grad_u + grad_u.transpose());                 // Eq. 2
-    // psi = 1/2 eps : C : eps = 1/2 lambda tr(eps)^2 + mu eps : eps (the E1/E2/E3 terms of Eq. 16).
-    U += d.weight(e, q) * (0.5 * c_.E2 * eps.trace() * eps.trace() + c_.E3 * eps.squaredNorm());
+CorotationalHexForm::ElementVector CorotationalHexForm::unrotated_displacements(Eigen::Index e, const Eigen::VectorXd& x,
+                                                                              const Mat3& R) const {
+  const auto& elements = disc_->mesh().elements;
+  ElementVector u;
+  for (int a = 0; a < 8; ++a) {
+    const Eigen::Index v = elements(e, a);
+    u.segment<3>(3 * a).noalias() = R.transpose() * x.segment<3>(3 * v);
+    u.segment<3>(3 * a) -= rest_.segment<3>(3 * v);
   }
-  return U;
+  return u;
+}
+
+double CorotationalHexForm::element_value(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const {
+  // U_e = sum_q w_q psi(eps_q) with grad u = R^T G - I (Eq. 11) and psi = 1/2 eps : C : eps
+  // = 1/2 lambda tr(eps)^2 + mu eps : eps (the E1/E2/E3 terms of Eq. 16) is the quadratic form
+  // 1/2 d^T K_e d of the unrotated displacements d = R^T x - X, K_e from the same quadrature
+  // (Eq. 10): evaluated so, with fixed-size products.
+  // K_e annihilates translations: the mean of d is taken out first, so that a body far from its
+  // rest position (metres of fall) does not leave K_e d as a difference of large terms.
+  ElementVector u = unrotated_displacements(e, x, R);
+  const Vec3 mean = u.reshaped(3, 8).rowwise().mean();
+  u.reshaped(3, 8).colwise() -= mean;
+  return 0.5 * u.dot(K_[e] * u);
 }
 
 void CorotationalHexForm::element_values(const Eigen::VectorXd& x, std::vector<double>& energies) const {
@@ -116,26 +183,24 @@ Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eige
 
 Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eigen::VectorXd& x, JacobianKind kind,
                                                          const ElementRotation& rotation) const {
-  const Discretization& d = *disc_;
-  const Eigen::Matrix3Xd xe = d.element_positions(e, x);
-  const Eigen::Matrix3Xd Xe = d.element_positions(e, rest_);
-  const SignedSvd& svd = rotation.svd;
   const Mat3& R = rotation.R;
   // Unrotated displacements d_a = R^T x_a - X_a and rest-frame forces K_e d (Eq. 17 with R fixed:
   // dU/dx_a = R (K_e d)_a, exactly the warped elastic force for psi = 1/2 eps : C : eps).
-  Eigen::VectorXd disp(24);
-  for (int a = 0; a < 8; ++a) disp.segment<3>(3 * a) = R.transpose() * xe.col(a) - Xe.col(a);
-  const Eigen::VectorXd f = K_[e] * disp;
+  const ElementVector disp = unrotated_displacements(e, x, R);
+  const ElementVector f = K_[e] * disp;
   Eigen::VectorXd g(24);
-  for (int a = 0; a < 8; ++a) g.segment<3>(3 * a) = R * f.segment<3>(3 * a);
+  for (int a = 0; a < 8; ++a) g.segment<3>(3 * a).noalias() = R * f.segment<3>(3 * a);
   if (kind == JacobianKind::Warped) return g;
 
   // The rotation's own change (what Eq. 17 discards, Chao et al.): with F_tet = R S and
   // dR = R [omega]x, (tr(S) I - S) omega = axial(R^T dF - dF^T R), and
   // dU = -omega . m with m = sum_a (R^T x_a) x f_a, so dU/dF_tet = -R [n]x, n = (tr S I - S)^-1 m.
+  // R^T x_a = d_a + X_a.
+  const auto& elements = disc_->mesh().elements;
   Vec3 m = Vec3::Zero();
-  for (int a = 0; a < 8; ++a) m += (R.transpose() * xe.col(a)).cross(f.segment<3>(3 * a));
-  const Mat3 S = svd.V * svd.sigma.asDiagonal() * svd.V.transpose();
+  for (int a = 0; a < 8; ++a)
+    m += (disp.segment<3>(3 * a) + rest_.segment<3>(3 * elements(e, a))).cross(f.segment<3>(3 * a));
+  const Mat3& S = rotation.S;
   const Mat3 M = S.trace() * Mat3::Identity() - S;
   const Vec3 n = M.fullPivLu().solve(m);
   const Mat3 dU_dF = -R * cross_matrix(n);
@@ -210,11 +275,22 @@ void CorotationalHexForm::add_hessian(const Eigen::VectorXd& x, BlockHessian& H)
       for (size_t idx = r.begin(); idx != r.end(); ++idx) {
         const Eigen::Index e = group[idx];
         const Mat3& R = (*rotations)[static_cast<size_t>(e)].R;
-        const Eigen::MatrixXd& Ke = K_[e];
-        for (int b = 0; b < 8; ++b)
-          for (int a = 0; a < 8; ++a)
-            H.add_block_at_slot(elements(e, b), slots[static_cast<size_t>(64 * e + 8 * b + a)],
-                                R * Ke.block<3, 3>(3 * a, 3 * b) * R.transpose());
+        const ElementMatrix& Ke = K_[e];
+        // K_e is symmetric (block (b, a) is block (a, b) transposed, bit for bit): the blocks
+        // above the diagonal are rotated once and added with their transposes.
+        for (int b = 0; b < 8; ++b) {
+          const std::size_t base = static_cast<size_t>(64 * e);
+          Mat3 RK;
+          RK.noalias() = R * Ke.block<3, 3>(3 * b, 3 * b);
+          Mat3 block;
+          block.noalias() = RK * R.transpose();
+          H.add_block_at_slot(elements(e, b), slots[base + 9 * b], block);
+          for (int a = 0; a < b; ++a) {
+            RK.noalias() = R * Ke.block<3, 3>(3 * a, 3 * b);
+            block.noalias() = RK * R.transpose();
+            H.add_symmetric_pair(elements(e, a), elements(e, b), slots[base + 8 * b + a], slots[base + 8 * a + b], block);
+          }
+        }
       }
     });
   }

@@ -28,7 +28,7 @@ std::shared_ptr<const std::vector<ElementRotation>> ElementRotationCache::refres
       if (old && old->corners[i] == next->corners[i])
         next->rotations[i] = old->rotations[i];
       else
-        next->rotations[i] = compute(e, next->corners[i]);
+        next->rotations[i] = compute(e, next->corners[i], old ? &old->rotations[i] : nullptr);
     }
   });
   {
@@ -39,16 +39,19 @@ std::shared_ptr<const std::vector<ElementRotation>> ElementRotationCache::refres
   return {next, &next->rotations};
 }
 
-bool ElementRotationCache::lookup(Eigen::Index e, const Corners& corners, ElementRotation& out) const {
+bool ElementRotationCache::lookup(Eigen::Index e, const Corners& corners, ElementRotation& out, bool* stale) const {
   std::shared_ptr<const Snapshot> snapshot;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     snapshot = current_;
   }
   const auto i = static_cast<size_t>(e);
-  if (!snapshot || snapshot->corners[i] != corners) return false;
+  if (stale) *stale = false;
+  if (!snapshot) return false;
   out = snapshot->rotations[i];
-  return true;
+  if (snapshot->corners[i] == corners) return true;
+  if (stale) *stale = true;
+  return false;
 }
 
 }  // namespace sinew

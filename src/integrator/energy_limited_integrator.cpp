@@ -1,6 +1,7 @@
 #include "sinew/integrator/energy_limited_integrator.hpp"
 
 #include <fmt/format.h>
+#include <cmath>
 
 #include "sinew/core/error.hpp"
 
@@ -60,7 +61,11 @@ StepStats EnergyLimitedIntegrator::advance_frame(State& state, int frame, const 
 nlohmann::json EnergyLimitedIntegrator::checkpoint_state() const {
   nlohmann::json multipliers = nlohmann::json::array();
   for (const auto& [key, value] : stepper_->multipliers()) multipliers.push_back({key, value});
-  return {{"multipliers", multipliers}};
+  nlohmann::json state = {{"multipliers", multipliers}};
+  // The SQP predictor (per DOF), where the last step left one.
+  const Eigen::VectorXd& predictor = stepper_->predictor();
+  if (predictor.size() > 0) state["predictor"] = std::vector<double>(predictor.data(), predictor.data() + predictor.size());
+  return state;
 }
 
 void EnergyLimitedIntegrator::restore_state(const nlohmann::json& state, int frame) {
@@ -84,6 +89,21 @@ void EnergyLimitedIntegrator::restore_state(const nlohmann::json& state, int fra
     multipliers[key] = m[1].get<double>();
   }
   stepper_->set_multipliers(std::move(multipliers));
+  // Optional (checkpoints written before the predictor have none: the first resumed step then
+  // starts without a prediction).
+  Eigen::VectorXd predictor;
+  if (state.contains("predictor")) {
+    const nlohmann::json& p = state.at("predictor");
+    if (!p.is_array() || p.size() != static_cast<std::size_t>(disc.num_dofs()))
+      throw Error(fmt::format("must be an array of {} numbers (one per DOF)", disc.num_dofs()), "/predictor");
+    predictor.resize(disc.num_dofs());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (!p[i].is_number() || !std::isfinite(p[i].get<double>()))
+        throw Error("must be a finite number", fmt::format("/predictor/{}", i));
+      predictor(static_cast<Eigen::Index>(i)) = p[i].get<double>();
+    }
+  }
+  stepper_->set_predictor(std::move(predictor));
   stepper_->set_time(frame * frame_duration());
 }
 

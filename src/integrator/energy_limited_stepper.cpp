@@ -60,7 +60,8 @@ struct Linearisation {
 Linearisation linearise_constraints(const ElementForm& model, const EnergyLimitedStepSettings& settings,
                                     const std::vector<char>& fixed, const ContactProvider& contacts, double time,
                                     const Eigen::VectorXd& x_k, const Eigen::VectorXd& v_k,
-                                    const std::map<long, char>& ever_active, bool final_iteration) {
+                                    const std::map<long, char>& ever_active, bool final_iteration,
+                                    bool rows_even_if_satisfied = false) {
   const double h = settings.time_step;
   const Discretization& disc = model.discretization();
   const auto& elements = disc.mesh().elements;
@@ -85,7 +86,7 @@ Linearisation linearise_constraints(const ElementForm& model, const EnergyLimite
   const std::vector<ContactCandidate> candidates = contacts ? contacts(x_k, time, time + h) : std::vector<ContactCandidate>{};
   for (const ContactCandidate& c : candidates) lin.penetration = std::max(lin.penetration, -c.gap);
   lin.satisfied = lin.energy_violation <= settings.energy_tolerance && lin.penetration <= settings.contact_tolerance;
-  if (lin.satisfied || final_iteration) return lin;
+  if ((lin.satisfied && !rows_even_if_satisfied) || final_iteration) return lin;
   std::vector<Eigen::VectorXd> jacobians(limited.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, limited.size(), 32), [&](const auto& range) {
     for (size_t i = range.begin(); i < range.end(); ++i) jacobians[i] = energy_constraint_jacobian(model, limited[i], x_k, *limit);
@@ -168,7 +169,39 @@ struct EnergyLimitedStepper::Factorization {
     slots_outer.assign(outer, outer + A.outerSize() + 1);
     slots_inner.assign(inner, inner + A.nonZeros());
     block_slots.clear();
+    scatter_valid = false;
   }
+  // Where A = h^2 K becomes M + h^2 K with the fixed DOFs' rows and columns replaced by identity
+  // ones: the value positions to clear and, per DOF, its diagonal's position and what is added
+  // there (its mass, or 1 on a fixed DOF). Valid for the pattern above and the fixed mask.
+  struct Scatter {
+    std::vector<int> cleared, diagonal;
+    std::vector<double> diagonal_add;
+  };
+  Scatter scatter_map;
+  std::vector<char> scatter_fixed;
+  bool scatter_valid = false;
+  const Scatter& scatter(const std::vector<char>& fixed, const Eigen::VectorXd& masses) {
+    if (scatter_valid && scatter_fixed == fixed) return scatter_map;
+    Scatter& s = scatter_map;
+    s.cleared.clear();
+    s.diagonal.assign(static_cast<size_t>(A.outerSize()), -1);
+    s.diagonal_add.resize(static_cast<size_t>(A.outerSize()));
+    for (Eigen::Index c = 0; c < A.outerSize(); ++c)
+      for (int k = A.outerIndexPtr()[c]; k < A.outerIndexPtr()[c + 1]; ++k) {
+        const Eigen::Index r = A.innerIndexPtr()[k];
+        if (fixed[static_cast<size_t>(r)] || fixed[static_cast<size_t>(c)]) s.cleared.push_back(k);
+        if (r == c) s.diagonal[static_cast<size_t>(c)] = k;
+      }
+    for (Eigen::Index c = 0; c < A.outerSize(); ++c) {
+      if (s.diagonal[static_cast<size_t>(c)] < 0) throw Error("a vertex belongs to no element", "constrained stepper");
+      s.diagonal_add[static_cast<size_t>(c)] = fixed[static_cast<size_t>(c)] ? 1.0 : masses(c);
+    }
+    scatter_fixed = fixed;
+    scatter_valid = true;
+    return s;
+  }
+
   const std::vector<int>& slots(const Discretization& disc, Eigen::Index e) {
     block_slots.resize(static_cast<size_t>(disc.num_elements()));
     std::vector<int>& s = block_slots[static_cast<size_t>(e)];
@@ -299,17 +332,13 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   A *= h * h;
   Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * f0;
   if (v_fixed.squaredNorm() > 0.0) b -= A * v_fixed + mass_dofs_.cwiseProduct(v_fixed);
-  // A = M + h^2 K in K's own storage: rows and columns of fixed DOFs become identity rows.
-  Eigen::Index diagonal_found = 0;
-  for (Eigen::Index k = 0; k < A.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      if (fixed[it.row()] || fixed[it.col()]) it.valueRef() = 0.0;
-      if (it.row() == it.col()) {
-        it.valueRef() += fixed[k] ? 1.0 : mass_dofs_(k);
-        ++diagonal_found;
-      }
-    }
-  if (diagonal_found != n) throw Error("a vertex belongs to no element", "constrained stepper");
+  // A = M + h^2 K in K's own storage: rows and columns of fixed DOFs become identity rows. The
+  // positions of the entries to clear and of the diagonal are found once per pattern and mask.
+  const Factorization::Scatter& scatter = factor_->scatter(fixed, mass_dofs_);
+  double* a_values = A.valuePtr();
+  for (const int k : scatter.cleared) a_values[k] = 0.0;
+  for (std::size_t i = 0; i < scatter.diagonal.size(); ++i)
+    a_values[scatter.diagonal[i]] += scatter.diagonal_add[i];
   for (Eigen::Index i = 0; i < n; ++i)
     if (fixed[i]) b(i) = v_fixed(i);
   const FactorizationReuse& reuse = settings_.reuse;
@@ -352,23 +381,41 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   std::map<long, char> ever_active;
   Eigen::SparseMatrix<double>& H = factor_->H;
   auto t_lcp = Clock::now();
+  // The predictor: where the previous step showed the constraints' nonlinearity (two or more SQP
+  // iterations, or an active energy limit), its constraint correction v - v* is the best guess of
+  // this step's, so
+  // the first linearisation is made at v* + that correction instead of v*: fewer SQP iterations
+  // with the same acceptance test. v* itself is still tested first (energies and contacts only),
+  // and taken as the step's answer when it satisfies the constraints, as without the predictor.
+  const bool predict = settings_.sqp_predictor && settings_.sqp_max_iterations > 0 && predictor_.size() == n;
+  bool predicted = false;  // v_k != v* (then the LCP's gradient term g = A (v_k - v*) is not zero)
   for (int k = 0;; ++k) {
-    const Eigen::VectorXd x_k = x0 + h * v_k;
-    const Linearisation lin = linearise_constraints(*limited_, settings_, fixed, contacts_, time_, x_k, v_k, ever_active,
-                                                    k >= settings_.sqp_max_iterations);
-    const std::vector<Row>& rows = lin.rows;
-    const double energy_violation = lin.energy_violation;
-    const double penetration = lin.penetration;
-    report.energy_violation = std::max(0.0, energy_violation);
-    report.penetration = penetration;
-    report.max_element_energy = lin.max_energy;
-    const bool satisfied = lin.satisfied;
-    if (satisfied || k >= settings_.sqp_max_iterations) {
-      report.converged = satisfied;
+    Eigen::VectorXd x_k = x0 + h * v_k;
+    const bool check_only = k == 0 && predict;
+    Linearisation lin = linearise_constraints(*limited_, settings_, fixed, contacts_, time_, x_k, v_k, ever_active,
+                                              k >= settings_.sqp_max_iterations || check_only);
+    if (check_only && !lin.satisfied) {
+      v_k = v_star + predictor_;
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (fixed[i]) v_k(i) = v_star(i);
+      x_k = x0 + h * v_k;
+      predicted = true;
+      // Rows also where the guess already satisfies the constraints: it is not the step's answer.
+      lin = linearise_constraints(*limited_, settings_, fixed, contacts_, time_, x_k, v_k, ever_active, false, true);
+    } else if (lin.satisfied || k >= settings_.sqp_max_iterations) {
+      const double energy_violation = lin.energy_violation;
+      report.energy_violation = std::max(0.0, energy_violation);
+      report.penetration = lin.penetration;
+      report.max_element_energy = lin.max_energy;
+      report.converged = lin.satisfied;
       v = v_k;
       multipliers_ = k > 0 ? warm : std::map<long, double>{};
       break;
     }
+    const std::vector<Row>& rows = lin.rows;
+    report.energy_violation = std::max(0.0, lin.energy_violation);
+    report.penetration = lin.penetration;
+    report.max_element_energy = lin.max_energy;
 
     // ---- quadratic model: H = A plus the curvature of the energy constraints with lambda > 0
     bool stiffened = false;
@@ -378,27 +425,40 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
         if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
         const std::vector<int>& slots = factor_->slots(disc, key);
         const Eigen::MatrixXd He = limited_->element_hessian(key, x_k) * (h * lambda_e / limit->max_energy);
+        bool any_fixed = false, any_free = false;
+        for (int a = 0; a < disc.nodes(); ++a)
+          for (int i = 0; i < 3; ++i) {
+            const bool f = fixed[static_cast<size_t>(3 * elements(key, a) + i)] != 0;
+            any_fixed = any_fixed || f;
+            any_free = any_free || !f;
+          }
+        if (!any_free) continue;  // every entry has a fixed row or column
+        if (!stiffened) {
+          // H = A: same pattern (A holds every element block), so A's values are copied into H's
+          // storage, kept from earlier steps.
+          const bool same_pattern =
+              H.isCompressed() && H.outerSize() == A.outerSize() && H.nonZeros() == A.nonZeros() &&
+              std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, H.outerIndexPtr()) &&
+              std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), H.innerIndexPtr());
+          if (same_pattern)
+            std::copy(A.valuePtr(), A.valuePtr() + A.nonZeros(), H.valuePtr());
+          else
+            H = A;
+          stiffened = true;
+        }
         double* values = H.valuePtr();
+        const double* he = He.data();  // column-major: entry (r, c) at c * dofs + r
+        if (!any_fixed) {
+          for (int c = 0; c < dofs; ++c)
+            for (int r = 0; r < dofs; ++r) values[slots[static_cast<size_t>(r * dofs + c)]] += he[c * dofs + r];
+          continue;
+        }
         for (int a = 0; a < disc.nodes(); ++a)
           for (int o = 0; o < disc.nodes(); ++o)
             for (int i = 0; i < 3; ++i)
               for (int j = 0; j < 3; ++j) {
                 const Eigen::Index r = 3 * elements(key, a) + i, c = 3 * elements(key, o) + j;
                 if (fixed[r] || fixed[c]) continue;
-                if (!stiffened) {
-                  // H = A: same pattern (A holds every element block), so A's values are copied
-                  // into H's storage, kept from earlier steps.
-                  const bool same_pattern =
-                      H.isCompressed() && H.outerSize() == A.outerSize() && H.nonZeros() == A.nonZeros() &&
-                      std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, H.outerIndexPtr()) &&
-                      std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), H.innerIndexPtr());
-                  if (same_pattern)
-                    std::copy(A.valuePtr(), A.valuePtr() + A.nonZeros(), H.valuePtr());
-                  else
-                    H = A;
-                  values = H.valuePtr();
-                  stiffened = true;
-                }
                 values[slots[static_cast<size_t>((3 * a + i) * dofs + 3 * o + j)]] += He(3 * a + i, 3 * o + j);
               }
       }
@@ -408,7 +468,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     } else if (current != &A) {
       use(A, factor_->backward_euler);
     }
-    const Eigen::VectorXd g = k == 0 ? Eigen::VectorXd::Zero(n) : Eigen::VectorXd(A * (v_k - v_star));
+    const Eigen::VectorXd g = k == 0 && !predicted ? Eigen::VectorXd::Zero(n) : Eigen::VectorXd(A * (v_k - v_star));
 
     // ---- LCP (Eq. 23) with W = J H^-1 J^T
     const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
@@ -548,6 +608,13 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     v_k += u;  // Eq. 21 for k = 0
   }
   report.lcp_seconds = since(t_lcp);
+  // The next step's predictor: this step's correction, where the constraints' nonlinearity
+  // showed (two or more SQP iterations, or an active energy limit). Contacts alone are linear in
+  // the positions (a plane's exactly): one iteration answers them, a guess would only cost.
+  if (report.sqp_iterations >= 2 || (report.sqp_iterations >= 1 && report.active_energy > 0))
+    predictor_ = v - v_star;
+  else
+    predictor_.resize(0);
   report.factorizations = counters.factorizations;
   report.cg_iterations = counters.cg_iterations;
   report.factor_seconds = counters.factor_seconds;

@@ -43,7 +43,9 @@ class CorotationalHexForm final : public ElementForm {
   // at the same x that usually follow: constraint Jacobians, element Hessians).
   void element_values(const Eigen::VectorXd& x, std::vector<double>& energies) const override;
   // Rest-frame stiffness K_e (24 x 24, node-major), Eq. 10.
-  const Eigen::MatrixXd& element_stiffness(Eigen::Index e) const { return K_[e]; }
+  using ElementMatrix = Eigen::Matrix<double, 24, 24>;
+  using ElementVector = Eigen::Matrix<double, 24, 1>;
+  const ElementMatrix& element_stiffness(Eigen::Index e) const { return K_[static_cast<size_t>(e)]; }
 
   // U_e = sum_q w_q psi(eps_q), eps = sym(R^T G - I) (Eq. 11, 13), psi = 1/2 eps : C : eps.
   double element_value(Eigen::Index e, const Eigen::VectorXd& x) const override;
@@ -62,7 +64,7 @@ class CorotationalHexForm final : public ElementForm {
  private:
   std::shared_ptr<const Discretization> disc_;
   HookeCoefficients c_;
-  std::vector<Eigen::MatrixXd> K_;
+  std::vector<ElementMatrix> K_;
   Eigen::VectorXd rest_;                // rest positions X
   std::vector<Mat3> tet_rest_inverse_;  // (X_2 - X_0, X_5 - X_0, X_7 - X_0)^-1 per element
   // The rotations of the last positions a whole-mesh pass saw (value, gradient, Hessian,
@@ -75,10 +77,15 @@ class CorotationalHexForm final : public ElementForm {
   mutable std::uint64_t scatter_pattern_ = 0;
   mutable std::vector<int> scatter_slots_;
   ElementRotationCache::Corners corners(Eigen::Index e, const Eigen::VectorXd& x) const;
-  ElementRotation compute_rotation(Eigen::Index e, const ElementRotationCache::Corners& c) const;
+  // From the corners; `warm` (a rotation of the element at other corners, or null) starts a
+  // Newton iteration, with the SVD as fallback.
+  ElementRotation compute_rotation(Eigen::Index e, const ElementRotationCache::Corners& c,
+                                   const ElementRotation* warm) const;
   ElementRotation element_rotation(Eigen::Index e, const Eigen::VectorXd& x) const;
   std::shared_ptr<const std::vector<ElementRotation>> all_rotations(const Eigen::VectorXd& x) const;
   double element_value(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const;
+  // d_a = R^T x_a - X_a over the element's nodes.
+  ElementVector unrotated_displacements(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const;
   Eigen::VectorXd element_gradient(Eigen::Index e, const Eigen::VectorXd& x, JacobianKind kind,
                                    const ElementRotation& rotation) const;
 };

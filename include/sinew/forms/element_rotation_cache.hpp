@@ -8,7 +8,10 @@
 // An entry is keyed by the 12 coordinates it was computed from (the innermost tetrahedron's four
 // corners), compared exactly, so a hit returns bit for bit what computing it would. Whole-mesh
 // passes (refresh) publish a new immutable snapshot; lookups take the current one under a mutex,
-// so concurrent calls are safe and a pass never writes into a snapshot a reader holds.
+// so concurrent calls are safe and a pass never writes into a snapshot a reader holds. A miss
+// hands the element's stored rotation (for other corners) to the computation as a warm start:
+// between SQP iterates and time steps an element turns by little, and a polar decomposition
+// iterated from the old rotation costs a fraction of a Jacobi SVD.
 #include <array>
 #include <functional>
 #include <memory>
@@ -19,17 +22,20 @@
 
 namespace sinew {
 
+// The polar decomposition F_tet = R S of the innermost tetrahedron's deformation gradient: R the
+// rotation closest to F_tet (U V^T of its rotation-variant SVD), S = R^T F_tet (symmetric).
 struct ElementRotation {
-  SignedSvd svd;  // F_tet = U diag(sigma) V^T
-  Mat3 R;         // U V^T
+  Mat3 R;
+  Mat3 S;
 };
 
 class ElementRotationCache {
  public:
   using Corners = std::array<double, 12>;
-  // `corners(e, x)` gathers element e's 12 coordinates; `compute(e, corners)` is its rotation.
+  // `corners(e, x)` gathers element e's 12 coordinates; `compute(e, corners, warm)` is its
+  // rotation, `warm` the element's rotation at other corners (a starting guess) or null.
   using Gather = std::function<Corners(Eigen::Index e, const Eigen::VectorXd& x)>;
-  using Compute = std::function<ElementRotation(Eigen::Index e, const Corners& corners)>;
+  using Compute = std::function<ElementRotation(Eigen::Index e, const Corners& corners, const ElementRotation* warm)>;
 
   explicit ElementRotationCache(Eigen::Index num_elements) : num_elements_(num_elements) {}
 
@@ -37,8 +43,9 @@ class ElementRotationCache {
   // stored for later lookups.
   std::shared_ptr<const std::vector<ElementRotation>> refresh(const Eigen::VectorXd& x, const Gather& corners,
                                                               const Compute& compute);
-  // Element e's stored rotation if it was computed from these corners.
-  bool lookup(Eigen::Index e, const Corners& corners, ElementRotation& out) const;
+  // Element e's stored rotation: true if it was computed from these corners; false with `out`
+  // the stored one for other corners (`*stale` set) or nothing stored (`*stale` cleared).
+  bool lookup(Eigen::Index e, const Corners& corners, ElementRotation& out, bool* stale = nullptr) const;
 
  private:
   struct Snapshot {

@@ -48,6 +48,10 @@ struct EnergyLimitedStepSettings {
   int sqp_max_iterations = 20;
   double energy_tolerance = 1e-3;   // accept U_e <= (1 + tol) U_max
   double contact_tolerance = 1e-4;  // accept penetration up to this depth (m)
+  // Where the previous step needed two or more SQP iterations or had an active energy limit,
+  // linearise first at v* plus its correction v - v* (when v* itself violates a constraint);
+  // the same acceptance test (energy_limited_stepper.cpp).
+  bool sqp_predictor = true;
   FactorizationReuse reuse;
 };
 
@@ -121,6 +125,10 @@ class EnergyLimitedStepper {
   // first Lagrangian Hessian. A resumed run restores them with the positions and velocities.
   const std::map<long, double>& multipliers() const { return multipliers_; }
   void set_multipliers(std::map<long, double> multipliers) { multipliers_ = std::move(multipliers); }
+  // The SQP predictor of the next step (the last step's v - v*, or empty): a resumed run
+  // restores it with the multipliers, so that it takes the steps an uninterrupted one takes.
+  const Eigen::VectorXd& predictor() const { return predictor_; }
+  void set_predictor(Eigen::VectorXd predictor) { predictor_ = std::move(predictor); }
 
   const EnergyLimitedStepSettings& settings() const { return settings_; }
   const ElementForm& limited_form() const { return *limited_; }
@@ -135,6 +143,7 @@ class EnergyLimitedStepper {
   EnergyLimitedStepSettings settings_;
   std::unique_ptr<Factorization> factor_;
   std::map<long, double> multipliers_;  // of the last step's final LCP, by constraint key
+  Eigen::VectorXd predictor_;           // the last step's v - v* (empty: no prediction)
   double time_ = 0.0;
 };
 

@@ -99,6 +99,10 @@ class LaggedFactorization {
   double cg_iterations_per_factorization_ = 0.0;
   int cg_iterations_since_ = 0;
   std::unordered_map<long, Column> columns_;
+  // The pattern CG's serial product was last prepared for, and its columns that start a vertex's
+  // triple of columns with equal rows (lagged_factorization.cpp).
+  std::vector<int> product_outer_, product_inner_;
+  std::vector<char> vertex_columns_;
 };
 
 }  // namespace sinew
