@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "sinew/core/batched_eigen3.hpp"
 
@@ -16,10 +17,10 @@ bool any_nonzero(const double (&x)[Q]) {
   return r;
 }
 
-// H += s v v^T per lane (v: a 9-vector per lane).
+// H += s v v^T per lane (v: a 9-vector per lane), upper triangle (n >= m) only.
 void add_rank_one(double (&H)[9][9][Q], const double (&s)[Q], const double (&v)[9][Q]) {
   for (int m = 0; m < 9; ++m)
-    for (int n = 0; n < 9; ++n)
+    for (int n = m; n < 9; ++n)
 #pragma omp simd
       for (int q = 0; q < Q; ++q) H[m][n][q] += s[q] * v[m][q] * v[n][q];
 }
@@ -87,9 +88,10 @@ bool add_hex_invariant_stiffness(const InvariantMaterial& material, Projection m
     c_J[q] = d.dJ;
   }
 
+  // Upper triangle (n >= m) until it is weighted and mirrored below.
   alignas(64) double H[9][9][Q];
   for (int m = 0; m < 9; ++m)
-    for (int n = 0; n < 9; ++n)
+    for (int n = m; n < 9; ++n)
 #pragma omp simd
       for (int q = 0; q < Q; ++q)
         H[m][n][q] = c_ff[q] * F[m][q] * F[n][q] + c_fg[q] * (F[m][q] * G[n][q] + G[m][q] * F[n][q]) +
@@ -97,6 +99,7 @@ bool add_hex_invariant_stiffness(const InvariantMaterial& material, Projection m
   // d2J/dF2: block (b, c) of F's columns is s [F_col(x)]_cross (core/svd.cpp volume_hessian).
   constexpr int blocks[6][4] = {{0, 1, 2, -1}, {0, 2, 1, 1}, {1, 0, 2, 1}, {1, 2, 0, -1}, {2, 0, 1, -1}, {2, 1, 0, 1}};
   for (const auto& blk : blocks) {
+    if (blk[0] > blk[1]) continue;  // lower blocks: the mirror of the upper ones
     const int r0 = 3 * blk[0], c0 = 3 * blk[1], x = 3 * blk[2];
     const double s = blk[3];
 #pragma omp simd
@@ -172,9 +175,12 @@ bool add_hex_invariant_stiffness(const InvariantMaterial& material, Projection m
   }
 
   for (int m = 0; m < 9; ++m)
-    for (int n = 0; n < 9; ++n)
+    for (int n = m; n < 9; ++n)
 #pragma omp simd
-      for (int q = 0; q < Q; ++q) H[m][n][q] *= D.weight[q];
+      for (int q = 0; q < Q; ++q) {
+        H[m][n][q] *= D.weight[q];
+        H[n][m][q] = H[m][n][q];
+      }
 
   // B^T H B with the nodes in the lanes: T[q][k][i + 3j][b] = sum_l D_q(b, l) H_q(3k + i, 3l + j),
   // then K_ab(i, j) = sum_q sum_k D_q(a, k) T[q][k][i + 3j][b].
@@ -188,17 +194,22 @@ bool add_hex_invariant_stiffness(const InvariantMaterial& material, Projection m
           for (int b = 0; b < 8; ++b)
             T[q][k][i + 3 * j][b] = D.node_lanes[q][0][b] * h0 + D.node_lanes[q][1][b] * h1 + D.node_lanes[q][2][b] * h2;
         }
-  for (int b = 0; b < 8; ++b)
+  // Only a <= b is kept: nodes 0-3 of columns b < 4 in 4 lanes, all 8 for the others.
+  const auto column = [&](int b, auto lanes) {
+    constexpr int L = decltype(lanes)::value;
     for (int ij = 0; ij < 9; ++ij) {
-      alignas(64) double acc[8] = {};
+      alignas(64) double acc[L] = {};
       for (int q = 0; q < Q; ++q)
         for (int k = 0; k < 3; ++k) {
           const double t = T[q][k][ij][b];
 #pragma omp simd
-          for (int a = 0; a < 8; ++a) acc[a] += D.node_lanes[q][k][a] * t;
+          for (int a = 0; a < L; ++a) acc[a] += D.node_lanes[q][k][a] * t;
         }
       for (int a = 0; a <= b; ++a) K.K[a][b](ij % 3, ij / 3) += acc[a];
     }
+  };
+  for (int b = 0; b < 4; ++b) column(b, std::integral_constant<int, 4>());
+  for (int b = 4; b < 8; ++b) column(b, std::integral_constant<int, 8>());
   return true;
 }
 
