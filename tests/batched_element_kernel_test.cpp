@@ -147,6 +147,24 @@ void expect_batched_matches_generic(const VolumeMesh& mesh, double amplitude, un
   }
 }
 
+TEST(BatchedHexStiffness, CurvatureDerivativesAreTheInvariantDerivativesWithoutPsi) {
+  for (const char* family : {"stable_neo_hookean", "fung", "arruda_boyce", "neo_hookean", "neo_hookean_decoupled"}) {
+    MaterialSpec spec;
+    spec.family = family;
+    spec.target = YoungPoisson{1e5, 0.45};
+    const auto material = build_material(spec);
+    const auto& m = dynamic_cast<const InvariantMaterial&>(*material);
+    for (const auto& [Ic, J] : {std::pair{3.0, 1.0}, std::pair{4.2, 1.3}, std::pair{2.1, 0.4}, std::pair{5.0, 2.0}}) {
+      const auto full = m.invariant_derivatives(Ic, J), curvature = m.curvature_derivatives(Ic, J);
+      EXPECT_EQ(curvature.dI, full.dI) << family;
+      EXPECT_EQ(curvature.dJ, full.dJ) << family;
+      EXPECT_EQ(curvature.dII, full.dII) << family;
+      EXPECT_EQ(curvature.dIJ, full.dIJ) << family;
+      EXPECT_EQ(curvature.dJJ, full.dJJ) << family;
+    }
+  }
+}
+
 TEST(BatchedHexStiffness, LatticeMatchesTheGenericPath) {
   // 3 x 3 x 3 cells share one rest shape: the kernel reads the per-shape gradient lanes.
   const VolumeMesh mesh = box_lattice(Vec3::Zero(), Vec3(1.0, 0.7, 0.5), Eigen::Vector3i::Constant(3));

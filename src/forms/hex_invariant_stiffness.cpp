@@ -80,7 +80,7 @@ bool add_hex_invariant_stiffness(const InvariantMaterial& material, Projection m
   const bool positive_j = material.domain() == Domain::PositiveJ;
   for (int q = 0; q < Q; ++q) {
     if (!std::isfinite(Ic[q]) || !std::isfinite(J[q]) || (positive_j && !(J[q] > 0.0))) return false;
-    const InvariantMaterial::Derivatives d = material.invariant_derivatives(Ic[q], J[q]);
+    const InvariantMaterial::Derivatives d = material.curvature_derivatives(Ic[q], J[q]);
     c_id[q] = 2.0 * d.dI;
     c_ff[q] = 4.0 * d.dII;
     c_fg[q] = 2.0 * d.dIJ;

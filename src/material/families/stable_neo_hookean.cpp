@@ -16,9 +16,14 @@ StableNeoHookean::StableNeoHookean(double lambda, double mu)
 }
 
 GeneralModelMaterial::Terms StableNeoHookean::terms(double Ic, double J) const {
+  Terms t = curvature_terms(Ic, J);
+  t.psi = 0.5 * mu_ * (Ic - 3.0) + volume_.psi(J) - 0.5 * mu_ * std::log(Ic + 1.0) - rest_psi_;  // Eq. 14
+  return t;
+}
+
+GeneralModelMaterial::Terms StableNeoHookean::curvature_terms(double Ic, double J) const {
   const double b = 1.0 / (Ic + 1.0);  // I_C + 1 >= 1: the barrier is regular everywhere
   Terms t;
-  t.psi = 0.5 * mu_ * (Ic - 3.0) + volume_.psi(J) - 0.5 * mu_ * std::log(Ic + 1.0) - rest_psi_;  // Eq. 14
   t.dI = 0.5 * mu_ * (1.0 - b);        // 2 Psi_I = mu_T (Eq. 18)
   t.dII = 0.5 * mu_ * b * b;           // 4 Psi_II = 2 mu / (I_C + 1)^2 (Eq. 41)
   t.dJ = volume_.dJ(J);                // lambda (J - alpha)

@@ -44,8 +44,11 @@ class GeneralModelMaterial : public InvariantMaterial {
     double dII = 0.0, dJJ = 0.0;  // second derivatives (no I_C-J coupling by construction)
   };
   virtual Terms terms(double Ic, double J) const = 0;
+  // terms() without psi (0), where psi costs more than its derivatives.
+  virtual Terms curvature_terms(double Ic, double J) const { return terms(Ic, J); }
 
   Derivatives invariant_derivatives(double Ic, double J) const final;
+  Derivatives curvature_derivatives(double Ic, double J) const final { return derivatives(curvature_terms(Ic, J)); }
   static GeneralModelCoefficients coefficients(const Terms& t);  // Eq. 52
   static Derivatives derivatives(const Terms& t);
 

@@ -19,6 +19,7 @@ class StableNeoHookean final : public GeneralModelMaterial {
   StableNeoHookean(double lambda, double mu);
   std::string name() const override { return "stable_neo_hookean"; }
   Terms terms(double Ic, double J) const override;
+  Terms curvature_terms(double Ic, double J) const override;  // no log
   double alpha() const { return 1.0 + 0.75 * mu_ / lambda_; }
 
  private:
