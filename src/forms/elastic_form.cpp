@@ -92,17 +92,11 @@ void ElasticForm::add_gradient_fixed(const Eigen::VectorXd& x, Eigen::VectorXd& 
   const auto& elements = d.mesh().elements;
   for (const auto& runs : d.run_colors()) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, runs.size(), 1), [&](const auto& r) {
-      HexGradientLanes scratch;
       for (size_t run = r.begin(); run != r.end(); ++run)
       for (Eigen::Index e = runs[run].first; e != runs[run].end; ++e) {
         const auto xe = positions<N>(d, e, x);
         Eigen::Matrix<double, 3, N> ge = Eigen::Matrix<double, 3, N>::Zero(3, d.nodes());
-        bool batched = false;
-        if constexpr (N == 8) {
-          const HexGradientLanes* lanes = hex_lanes(e, scratch);
-          batched = lanes && add_hex_invariant_gradient(*invariant_, *lanes, xe, ge);
-        }
-        for (int q = 0; !batched && q < d.quadrature_points(); ++q) {
+        for (int q = 0; q < d.quadrature_points(); ++q) {
           const auto D = gradients<N>(d, e, q);
           ge.noalias() += d.weight(e, q) * material_->pk1(xe * D) * D.transpose();
         }

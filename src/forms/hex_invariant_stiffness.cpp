@@ -30,49 +30,6 @@ double projection_shift(Projection mode, double floor, double lambda) {
   return mode == Projection::Clamp ? std::max(floor - lambda, 0.0) : std::max(-2.0 * lambda, 0.0);
 }
 
-// F = x_e D per point, column-major (F[i + 3k][q] = sum_a x_ai dN_a/dX_k), g = vec cof F (columns
-// are cross products of F's columns, paper 000 Eq. 19), I_C and J.
-struct PointKinematics {
-  alignas(64) double F[9][Q];
-  alignas(64) double G[9][Q];
-  double Ic[Q], J[Q];
-};
-
-void point_kinematics(const HexGradientLanes& D, const fixed_element::Positions<8>& xe, PointKinematics& p) {
-  auto& F = p.F;
-  auto& G = p.G;
-  for (int m = 0; m < 9; ++m)
-    for (int q = 0; q < Q; ++q) F[m][q] = 0.0;
-  for (int a = 0; a < 8; ++a)
-    for (int k = 0; k < 3; ++k)
-      for (int i = 0; i < 3; ++i) {
-        const double x = xe(i, a);
-#pragma omp simd
-        for (int q = 0; q < Q; ++q) F[i + 3 * k][q] += x * D.point_lanes[a][k][q];
-      }
-#pragma omp simd
-  for (int q = 0; q < Q; ++q) {
-    for (int c = 0; c < 3; ++c) {
-      const int c1 = 3 * ((c + 1) % 3), c2 = 3 * ((c + 2) % 3);
-      G[3 * c][q] = F[c1 + 1][q] * F[c2 + 2][q] - F[c1 + 2][q] * F[c2 + 1][q];
-      G[3 * c + 1][q] = F[c1 + 2][q] * F[c2][q] - F[c1][q] * F[c2 + 2][q];
-      G[3 * c + 2][q] = F[c1][q] * F[c2 + 1][q] - F[c1 + 1][q] * F[c2][q];
-    }
-    p.J[q] = F[0][q] * G[0][q] + F[1][q] * G[1][q] + F[2][q] * G[2][q];
-    double s = 0.0;
-    for (int m = 0; m < 9; ++m) s += F[m][q] * F[m][q];
-    p.Ic[q] = s;
-  }
-}
-
-// Whether every point's F is finite and inside the material's domain.
-bool in_domain(const InvariantMaterial& material, const PointKinematics& p) {
-  const bool positive_j = material.domain() == Domain::PositiveJ;
-  for (int q = 0; q < Q; ++q)
-    if (!std::isfinite(p.Ic[q]) || !std::isfinite(p.J[q]) || (positive_j && !(p.J[q] > 0.0))) return false;
-  return true;
-}
-
 }  // namespace
 
 HexGradientLanes hex_gradient_lanes(const Discretization& d, Eigen::Index e) {
@@ -91,18 +48,38 @@ HexGradientLanes hex_gradient_lanes(const Discretization& d, Eigen::Index e) {
 
 bool add_hex_invariant_stiffness(const InvariantMaterial& material, Projection mode, const HexGradientLanes& D,
                                  const fixed_element::Positions<8>& xe, fixed_element::SymmetricBlocks<8>& K) {
-  PointKinematics kin;
-  point_kinematics(D, xe, kin);
-  if (!in_domain(material, kin)) return false;
-  const auto& F = kin.F;
-  const auto& G = kin.G;
-  const auto& Ic = kin.Ic;
-  const auto& J = kin.J;
+  // F = x_e D per point, column-major: F[i + 3k][q] = sum_a x_ai dN_a/dX_k.
+  alignas(64) double F[9][Q] = {};
+  for (int a = 0; a < 8; ++a)
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) {
+        const double x = xe(i, a);
+#pragma omp simd
+        for (int q = 0; q < Q; ++q) F[i + 3 * k][q] += x * D.point_lanes[a][k][q];
+      }
+
+  // g = vec cof F (columns are cross products of F's columns, paper 000 Eq. 19), I_C, J.
+  alignas(64) double G[9][Q], Ic[Q], J[Q];
+#pragma omp simd
+  for (int q = 0; q < Q; ++q) {
+    for (int c = 0; c < 3; ++c) {
+      const int c1 = 3 * ((c + 1) % 3), c2 = 3 * ((c + 2) % 3);
+      G[3 * c][q] = F[c1 + 1][q] * F[c2 + 2][q] - F[c1 + 2][q] * F[c2 + 1][q];
+      G[3 * c + 1][q] = F[c1 + 2][q] * F[c2][q] - F[c1][q] * F[c2 + 2][q];
+      G[3 * c + 2][q] = F[c1][q] * F[c2 + 1][q] - F[c1 + 1][q] * F[c2][q];
+    }
+    J[q] = F[0][q] * G[0][q] + F[1][q] * G[1][q] + F[2][q] * G[2][q];
+    double s = 0.0;
+    for (int m = 0; m < 9; ++m) s += F[m][q] * F[m][q];
+    Ic[q] = s;
+  }
 
   // Invariant derivatives per point: H = c_id I + c_ff f f^T + c_fg (f g^T + g f^T) + c_gg g g^T
   // + c_J d2J/dF2.
   double c_id[Q], c_ff[Q], c_fg[Q], c_gg[Q], c_J[Q];
+  const bool positive_j = material.domain() == Domain::PositiveJ;
   for (int q = 0; q < Q; ++q) {
+    if (!std::isfinite(Ic[q]) || !std::isfinite(J[q]) || (positive_j && !(J[q] > 0.0))) return false;
     const InvariantMaterial::Derivatives d = material.curvature_derivatives(Ic[q], J[q]);
     c_id[q] = 2.0 * d.dI;
     c_ff[q] = 4.0 * d.dII;
@@ -233,32 +210,6 @@ bool add_hex_invariant_stiffness(const InvariantMaterial& material, Projection m
   };
   for (int b = 0; b < 4; ++b) column(b, std::integral_constant<int, 4>());
   for (int b = 4; b < 8; ++b) column(b, std::integral_constant<int, 8>());
-  return true;
-}
-
-bool add_hex_invariant_gradient(const InvariantMaterial& material, const HexGradientLanes& D,
-                                const fixed_element::Positions<8>& xe, Eigen::Matrix<double, 3, 8>& ge) {
-  PointKinematics kin;
-  point_kinematics(D, xe, kin);
-  if (!in_domain(material, kin)) return false;
-  // w P = w (2 Psi_I F + Psi_J g) per point (paper 000 Eq. 18-19).
-  double c_F[Q], c_G[Q];
-  for (int q = 0; q < Q; ++q) {
-    const InvariantMaterial::Derivatives d = material.curvature_derivatives(kin.Ic[q], kin.J[q]);
-    c_F[q] = D.weight[q] * 2.0 * d.dI;
-    c_G[q] = D.weight[q] * d.dJ;
-  }
-  // ge(i, a) += sum_q sum_k (w P_q)(i, k) dN_a/dX_k, the nodes in the lanes.
-  for (int i = 0; i < 3; ++i) {
-    alignas(64) double acc[8] = {};
-    for (int q = 0; q < Q; ++q)
-      for (int k = 0; k < 3; ++k) {
-        const double p = c_F[q] * kin.F[i + 3 * k][q] + c_G[q] * kin.G[i + 3 * k][q];
-#pragma omp simd
-        for (int a = 0; a < 8; ++a) acc[a] += p * D.node_lanes[q][k][a];
-      }
-    for (int a = 0; a < 8; ++a) ge(i, a) += acc[a];
-  }
   return true;
 }
 

@@ -31,9 +31,4 @@ HexGradientLanes hex_gradient_lanes(const Discretization& d, Eigen::Index e);
 bool add_hex_invariant_stiffness(const InvariantMaterial& material, Projection mode, const HexGradientLanes& D,
                                  const fixed_element::Positions<8>& xe, fixed_element::SymmetricBlocks<8>& K);
 
-// ge.col(a) += the element's gradient sum_q w_q P(F_q) dN_a/dX (P = 2 Psi_I F + Psi_J cof F) at
-// node positions xe. Returns false, with ge unchanged, where add_hex_invariant_stiffness does.
-bool add_hex_invariant_gradient(const InvariantMaterial& material, const HexGradientLanes& D,
-                                const fixed_element::Positions<8>& xe, Eigen::Matrix<double, 3, 8>& ge);
-
 }  // namespace sinew
