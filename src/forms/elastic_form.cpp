@@ -153,32 +153,20 @@ template <int N>
 void ElasticForm::add_hessian_fixed(const Eigen::VectorXd& x, BlockHessian& H, Projection projection) const {
   const auto& elements = disc_->mesh().elements;
   const std::vector<std::uint16_t>& slots = scatter_map(H);
-  double* values = H.matrix().valuePtr();
-  const int* outer = H.matrix().outerIndexPtr();
   for_each_element_stiffness<N>(x, projection, [&](Eigen::Index e, const fixed_element::SymmetricBlocks<N>& K) {
     // Upper blocks only; the lower ones are their transposes (K is symmetric). Runs of one
-    // colour share no vertex, so no two tasks write the same block.
-    // Inlined BlockHessian::add_symmetric_pair: node b's three columns start at outer[3 v_b], one
-    // column apart, and slot k of them holds rows 3k..3k+2 (block_offset, column_stride).
+    // colour share no vertex, so no two tasks write the same block. Each node's columns are
+    // looked up once per element.
     const std::uint16_t* slot = slots.data() + static_cast<size_t>(e) * N * N;
-    double* col[N];
-    Eigen::Index stride[N];
-    for (int b = 0; b < N; ++b) {
-      const int v = elements(e, b);
-      col[b] = values + outer[3 * v];
-      stride[b] = outer[3 * v + 1] - outer[3 * v];
-    }
-    for (int a = 0; a < N; ++a)
-      for (int b = a; b < N; ++b) {
-        const Mat3& M = K.K[a][b];
-        double* ab = col[b] + 3 * slot[a * N + b];
-        for (int j = 0; j < 3; ++j)
-          for (int i = 0; i < 3; ++i) ab[i + j * stride[b]] += M(i, j);
-        if (b == a) continue;
-        double* ba = col[a] + 3 * slot[b * N + a];
-        for (int j = 0; j < 3; ++j)
-          for (int i = 0; i < 3; ++i) ba[i + j * stride[a]] += M(j, i);
+    BlockHessian::Columns columns[N];
+    for (int b = 0; b < N; ++b) columns[b] = H.columns(elements(e, b));
+    for (int a = 0; a < N; ++a) {
+      columns[a].add(slot[a * N + a], K.K[a][a]);
+      for (int b = a + 1; b < N; ++b) {
+        columns[b].add(slot[a * N + b], K.K[a][b]);
+        columns[a].add_transposed(slot[b * N + a], K.K[a][b]);
       }
+    }
   });
 }
 

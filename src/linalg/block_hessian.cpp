@@ -48,15 +48,8 @@ int BlockHessian::max_slots() const {
 }
 
 void BlockHessian::add_symmetric_pair(int a, int b, int k_ab, int k_ba, const Mat3& M) {
-  double* values = A_.valuePtr();
-  const Eigen::Index stride_b = column_stride(b);
-  double* ab = values + block_offset(b, k_ab);
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) ab[i + j * stride_b] += M(i, j);
-  const Eigen::Index stride_a = column_stride(a);
-  double* ba = values + block_offset(a, k_ba);
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) ba[i + j * stride_a] += M(j, i);
+  columns(b).add(k_ab, M);
+  columns(a).add_transposed(k_ba, M);
 }
 
 void BlockHessian::set_zero() {
@@ -69,16 +62,7 @@ int BlockHessian::slot(int a, int b) const {
   return (it != r.end() && *it == a) ? static_cast<int>(it - r.begin()) : -1;
 }
 
-void BlockHessian::add_block_at_slot(int b, int k, const Mat3& M) {
-  double* values = A_.valuePtr();
-  const auto* outer = A_.outerIndexPtr();
-  for (int j = 0; j < 3; ++j) {
-    double* col = values + outer[3 * b + j] + 3 * k;
-    col[0] += M(0, j);
-    col[1] += M(1, j);
-    col[2] += M(2, j);
-  }
-}
+void BlockHessian::add_block_at_slot(int b, int k, const Mat3& M) { columns(b).add(k, M); }
 
 void BlockHessian::add_block(int a, int b, const Mat3& M) {
   const int k = slot(a, b);

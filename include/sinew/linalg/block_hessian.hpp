@@ -35,6 +35,29 @@ class BlockHessian {
   // Adds the 3x3 block M at (a, b) and its transpose at (b, a): one call per pair of distinct
   // nodes of a symmetric element matrix. `k_ab` = slot(a, b), `k_ba` = slot(b, a).
   void add_symmetric_pair(int a, int b, int k_ab, int k_ba, const Mat3& M);
+
+  // Vertex b's three columns for element scatter loops that add many blocks to the same
+  // vertices: where they start among the values and how far apart they are (block_offset,
+  // column_stride read once). Slot k's block is at values + 3k.
+  struct Columns {
+    double* values;
+    Eigen::Index stride;
+    // Block at slot k += M, or += M^T.
+    void add(int k, const Mat3& M) const {
+      double* block = values + 3 * k;
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) block[i + j * stride] += M(i, j);
+    }
+    void add_transposed(int k, const Mat3& M) const {
+      double* block = values + 3 * k;
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) block[i + j * stride] += M(j, i);
+    }
+  };
+  Columns columns(int b) {
+    const auto* outer = A_.outerIndexPtr();
+    return {A_.valuePtr() + outer[3 * b], outer[3 * b + 1] - outer[3 * b]};
+  }
   // Changes with every pattern built (a new pattern gets a new id), so a cached scatter map can
   // tell whether it still matches.
   std::uint64_t pattern_id() const { return pattern_id_; }
