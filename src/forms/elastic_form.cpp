@@ -153,6 +153,7 @@ template <int N>
 void ElasticForm::add_hessian_fixed(const Eigen::VectorXd& x, BlockHessian& H, Projection projection) const {
   const auto& elements = disc_->mesh().elements;
   const std::vector<std::uint16_t>& slots = scatter_map(H);
+  const Eigen::Index num_elements = disc_->num_elements();
   for_each_element_stiffness<N>(x, projection, [&](Eigen::Index e, const fixed_element::SymmetricBlocks<N>& K) {
     // Upper blocks only; the lower ones are their transposes (K is symmetric). Runs of one
     // colour share no vertex, so no two tasks write the same block. Each node's columns are
@@ -165,6 +166,15 @@ void ElasticForm::add_hessian_fixed(const Eigen::VectorXd& x, BlockHessian& H, P
       for (int b = a + 1; b < N; ++b) {
         columns[b].add(slot[a * N + b], K.K[a][b]);
         columns[a].add_transposed(slot[b * N + a], K.K[a][b]);
+      }
+    }
+    // The next element's blocks load while its stiffness is computed (runs are consecutive
+    // elements; at a run's end this only warms blocks another task may visit).
+    if (e + 1 < num_elements) {
+      const std::uint16_t* next = slot + N * N;
+      for (int b = 0; b < N; ++b) {
+        const BlockHessian::Columns c = H.columns(elements(e + 1, b));
+        for (int a = 0; a < N; ++a) c.prefetch(next[a * N + b]);
       }
     }
   });
