@@ -65,6 +65,58 @@ TEST(BatchedEigen3, SignedSvdMatchesTheRotationVariantSvd) {
   }
 }
 
+TEST(BatchedEigen3, LaneGroupsSweepAsIfAlone) {
+  // Two groups of 8 lanes in one call (how the stiffness kernel pairs elements) give bitwise
+  // what each group gives alone, whichever group needs more sweeps: a diagonal group (no sweep)
+  // beside generic ones, and generic groups beside degenerate and huge ones.
+  std::mt19937 rng(13);
+  std::vector<Mat3> Fs = test_matrices(rng);
+  for (int l = 0; l < W; ++l) Fs.push_back(Vec3(1.0 + l, 2.0, 0.5).asDiagonal());
+  ASSERT_EQ(Fs.size() % W, 0u);
+  const int groups = static_cast<int>(Fs.size() / W);
+  int compared = 0;
+  for (int g0 = 0; g0 < groups; ++g0)
+    for (int g1 = 0; g1 < groups; g1 += 3) {
+      double F[9][2 * W], U[9][2 * W], sigma[3][2 * W], V[9][2 * W];
+      double C[6][2 * W], values[3][2 * W], Q[9][2 * W];
+      for (int l = 0; l < 2 * W; ++l) {
+        const Mat3& A = Fs[static_cast<size_t>((l < W ? g0 : g1) * W + l % W)];
+        for (int m = 0; m < 9; ++m) F[m][l] = A.data()[m];
+        const Mat3 S = A.transpose() * A;
+        const double c[6] = {S(0, 0), S(1, 1), S(2, 2), S(0, 1), S(0, 2), S(1, 2)};
+        for (int m = 0; m < 6; ++m) C[m][l] = c[m];
+      }
+      batched::signed_svd<2 * W, W>(F, U, sigma, V);
+      batched::symmetric_eigen3<2 * W, W>(C, values, Q);
+      for (int half = 0; half < 2; ++half) {
+        double Fh[9][W], Uh[9][W], sh[3][W], Vh[9][W], Ch[6][W], vh[3][W], Qh[9][W];
+        for (int l = 0; l < W; ++l) {
+          const Mat3& A = Fs[static_cast<size_t>((half == 0 ? g0 : g1) * W + l)];
+          for (int m = 0; m < 9; ++m) Fh[m][l] = A.data()[m];
+          const Mat3 S = A.transpose() * A;
+          const double c[6] = {S(0, 0), S(1, 1), S(2, 2), S(0, 1), S(0, 2), S(1, 2)};
+          for (int m = 0; m < 6; ++m) Ch[m][l] = c[m];
+        }
+        batched::signed_svd<W>(Fh, Uh, sh, Vh);
+        batched::symmetric_eigen3<W>(Ch, vh, Qh);
+        for (int l = 0; l < W; ++l) {
+          const int L = half * W + l;
+          for (int m = 0; m < 9; ++m) {
+            EXPECT_EQ(U[m][L], Uh[m][l]) << g0 << " " << g1 << " lane " << L;
+            EXPECT_EQ(V[m][L], Vh[m][l]) << g0 << " " << g1 << " lane " << L;
+            EXPECT_EQ(Q[m][L], Qh[m][l]) << g0 << " " << g1 << " lane " << L;
+          }
+          for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(sigma[k][L], sh[k][l]) << g0 << " " << g1 << " lane " << L;
+            EXPECT_EQ(values[k][L], vh[k][l]) << g0 << " " << g1 << " lane " << L;
+          }
+        }
+      }
+      ++compared;
+    }
+  EXPECT_GT(compared, 20);
+}
+
 TEST(BatchedEigen3, SymmetricEigensystemMatchesEigen) {
   std::mt19937 rng(11);
   std::vector<Mat3> As;

@@ -123,15 +123,28 @@ void ElasticForm::for_each_element_stiffness(const Eigen::VectorXd& x, Projectio
   const Discretization& d = *disc_;
   for (const auto& runs : d.run_colors()) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, runs.size(), 1), [&](const auto& r) {
-      fixed_element::SymmetricBlocks<N> K;
-      HexGradientLanes scratch;
+      fixed_element::SymmetricBlocks<N> K, K1;
+      HexGradientLanes scratch, scratch1;
       for (size_t run = r.begin(); run != r.end(); ++run)
       for (Eigen::Index e = runs[run].first; e != runs[run].end; ++e) {
         const auto xe = positions<N>(d, e, x);
         K.set_zero();
         if constexpr (N == 8) {
-          // The batched kernel where it applies; the generic loop below reports bad points.
+          // The batched kernel where it applies, two elements of the run at a time; the generic
+          // loop below reports bad points.
           const HexGradientLanes* lanes = hex_lanes(e, scratch);
+          if (lanes && e + 1 != runs[run].end) {
+            const auto xe1 = positions<N>(d, e + 1, x);
+            const HexGradientLanes* lanes1 = hex_lanes(e + 1, scratch1);
+            K1.set_zero();
+            if (add_hex_invariant_stiffness_pair(*invariant_, projection, *lanes, xe, K, *lanes1, xe1, K1)) {
+              K.symmetrize_diagonal();
+              body(e, K);
+              K1.symmetrize_diagonal();
+              body(++e, K1);
+              continue;
+            }
+          }
           if (lanes && add_hex_invariant_stiffness(*invariant_, projection, *lanes, xe, K)) {
             K.symmetrize_diagonal();
             body(e, K);
@@ -168,12 +181,13 @@ void ElasticForm::add_hessian_fixed(const Eigen::VectorXd& x, BlockHessian& H, P
         columns[a].add_transposed(slot[b * N + a], K.K[a][b]);
       }
     }
-    // The next element's blocks load while its stiffness is computed (runs are consecutive
-    // elements; at a run's end this only warms blocks another task may visit).
-    if (e + 1 < num_elements) {
-      const std::uint16_t* next = slot + N * N;
+    // The blocks of the element two on load while the next stiffness is computed (runs are
+    // consecutive elements, taken two at a time; at a run's end this only warms blocks another
+    // task may visit).
+    if (e + 2 < num_elements) {
+      const std::uint16_t* next = slot + 2 * N * N;
       for (int b = 0; b < N; ++b) {
-        const BlockHessian::Columns c = H.columns(elements(e + 1, b));
+        const BlockHessian::Columns c = H.columns(elements(e + 2, b));
         for (int a = 0; a < N; ++a) c.prefetch(next[a * N + b]);
       }
     }

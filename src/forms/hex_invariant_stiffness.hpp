@@ -31,4 +31,12 @@ HexGradientLanes hex_gradient_lanes(const Discretization& d, Eigen::Index e);
 bool add_hex_invariant_stiffness(const InvariantMaterial& material, Projection mode, const HexGradientLanes& D,
                                  const fixed_element::Positions<8>& xe, fixed_element::SymmetricBlocks<8>& K);
 
+// The same for two elements in one call (16 lanes in the point stages, so one element's
+// latency-bound SVD sweeps overlap the other's); each K is bitwise what the single call gives.
+// Returns false, with both K unchanged, when either element has a bad point.
+bool add_hex_invariant_stiffness_pair(const InvariantMaterial& material, Projection mode,
+                                      const HexGradientLanes& D0, const fixed_element::Positions<8>& x0,
+                                      fixed_element::SymmetricBlocks<8>& K0, const HexGradientLanes& D1,
+                                      const fixed_element::Positions<8>& x1, fixed_element::SymmetricBlocks<8>& K1);
+
 }  // namespace sinew

@@ -242,12 +242,12 @@ double InvariantMaterial::psi_impl(const Mat3& F) const {
 }
 
 Mat3 InvariantMaterial::pk1_impl(const Mat3& F) const {
-  const Derivatives d = invariant_derivatives(F.squaredNorm(), F.determinant());
+  const Derivatives d = curvature_derivatives(F.squaredNorm(), F.determinant());
   return 2.0 * d.dI * F + d.dJ * cofactor(F);
 }
 
 Mat9 InvariantMaterial::hessian_impl(const Mat3& F) const {
-  return hessian_from(invariant_derivatives(F.squaredNorm(), F.determinant()), F);
+  return hessian_from(curvature_derivatives(F.squaredNorm(), F.determinant()), F);
 }
 
 Mat9 InvariantMaterial::hessian_from(const Derivatives& d, const Mat3& F) {

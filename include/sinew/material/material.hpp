@@ -116,8 +116,8 @@ class InvariantMaterial : public Material {
     double dII = 0.0, dIJ = 0.0, dJJ = 0.0;  // second derivatives
   };
   virtual Derivatives invariant_derivatives(double Ic, double J) const = 0;
-  // The derivatives without psi (left 0), for Hessian-only callers such as the batched element
-  // kernel; materials whose psi costs a log or exp override it.
+  // The derivatives without psi (left 0), for callers that need no energy (stresses, Hessians,
+  // the batched element kernel); materials whose psi costs a log or exp override it.
   virtual Derivatives curvature_derivatives(double Ic, double J) const { return invariant_derivatives(Ic, J); }
 
   double psi_stretch(const Vec3& sigma) const override;
