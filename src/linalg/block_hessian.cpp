@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "sinew/core/error.hpp"
 #include "sinew/linalg/symmetric_product.hpp"
@@ -53,7 +55,11 @@ void BlockHessian::add_symmetric_pair(int a, int b, int k_ab, int k_ba, const Ma
 }
 
 void BlockHessian::set_zero() {
-  std::fill(A_.valuePtr(), A_.valuePtr() + A_.nonZeros(), 0.0);
+  // In parallel: at 300k hexahedra the values are ~600 MB, and one thread's fill was ~10 % of
+  // an assembly.
+  double* values = A_.valuePtr();
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, A_.nonZeros(), Eigen::Index(1) << 16),
+                    [&](const auto& r) { std::fill(values + r.begin(), values + r.end(), 0.0); });
 }
 
 int BlockHessian::slot(int a, int b) const {
