@@ -217,20 +217,23 @@ TEST(Checkpoint, TheEnergyLimitedStatesMultiplierKeysMustNameConstraintsOfTheMes
   bad["integrator_state"]["multipliers"] = json::array({json::array({3, 0.001}), json::array({-60, 0.0})});
   write_json(out / "checkpoint.json", bad);
   EXPECT_EQ(run(scene, out, 4, true).frames.size(), 4u);
-  // The SQP predictor, where present, is one finite number per DOF (60 here).
+  // The SQP predictor and the last correction, where present, are one finite number per DOF (60
+  // here).
   json wrong_entry = json::array();
   for (int i = 0; i < 60; ++i) wrong_entry.push_back(i == 7 ? json("0.1") : json(0.0));
-  for (const json& predictor : {json::array({0.0, 1.0}), json(3.0), wrong_entry}) {
-    SCOPED_TRACE(predictor.dump());
+  for (const std::string key : {"predictor", "correction"}) {
+    for (const json& values : {json::array({0.0, 1.0}), json(3.0), wrong_entry}) {
+      SCOPED_TRACE(key + " " + values.dump());
+      bad = good;
+      bad["integrator_state"][key] = values;
+      write_json(out / "checkpoint.json", bad);
+      expect_contains(error_message([&] { run(scene, out, 4, true); }), {"checkpoint.json: /integrator_state/" + key});
+    }
     bad = good;
-    bad["integrator_state"]["predictor"] = predictor;
+    bad["integrator_state"][key] = std::vector<double>(60, 0.0);
     write_json(out / "checkpoint.json", bad);
-    expect_contains(error_message([&] { run(scene, out, 4, true); }), {"checkpoint.json: /integrator_state/predictor"});
+    EXPECT_EQ(run(scene, out, 4, true).frames.size(), 4u);
   }
-  bad = good;
-  bad["integrator_state"]["predictor"] = std::vector<double>(60, 0.0);
-  write_json(out / "checkpoint.json", bad);
-  EXPECT_EQ(run(scene, out, 4, true).frames.size(), 4u);
 }
 
 TEST(Checkpoint, ResumeRefusesWhenAnyFileTheSceneReadsChanged) {

@@ -62,9 +62,10 @@ nlohmann::json EnergyLimitedIntegrator::checkpoint_state() const {
   nlohmann::json multipliers = nlohmann::json::array();
   for (const auto& [key, value] : stepper_->multipliers()) multipliers.push_back({key, value});
   nlohmann::json state = {{"multipliers", multipliers}};
-  // The SQP predictor (per DOF), where the last step left one.
-  const Eigen::VectorXd& predictor = stepper_->predictor();
-  if (predictor.size() > 0) state["predictor"] = std::vector<double>(predictor.data(), predictor.data() + predictor.size());
+  // The SQP predictor and the last step's correction (per DOF), where the last step left them.
+  for (const auto& [key, values] : {std::pair<const char*, const Eigen::VectorXd*>{"predictor", &stepper_->predictor()},
+                                    {"correction", &stepper_->correction()}})
+    if (values->size() > 0) state[key] = std::vector<double>(values->data(), values->data() + values->size());
   return state;
 }
 
@@ -90,20 +91,24 @@ void EnergyLimitedIntegrator::restore_state(const nlohmann::json& state, int fra
   }
   stepper_->set_multipliers(std::move(multipliers));
   // Optional (checkpoints written before the predictor have none: the first resumed step then
-  // starts without a prediction).
-  Eigen::VectorXd predictor;
-  if (state.contains("predictor")) {
-    const nlohmann::json& p = state.at("predictor");
+  // starts without a prediction; before the correction, without an extrapolation).
+  auto per_dof = [&](const char* key) {
+    Eigen::VectorXd values;
+    if (!state.contains(key)) return values;
+    const nlohmann::json& p = state.at(key);
+    const std::string where = std::string("/") + key;
     if (!p.is_array() || p.size() != static_cast<std::size_t>(disc.num_dofs()))
-      throw Error(fmt::format("must be an array of {} numbers (one per DOF)", disc.num_dofs()), "/predictor");
-    predictor.resize(disc.num_dofs());
+      throw Error(fmt::format("must be an array of {} numbers (one per DOF)", disc.num_dofs()), where);
+    values.resize(disc.num_dofs());
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (!p[i].is_number() || !std::isfinite(p[i].get<double>()))
-        throw Error("must be a finite number", fmt::format("/predictor/{}", i));
-      predictor(static_cast<Eigen::Index>(i)) = p[i].get<double>();
+        throw Error("must be a finite number", fmt::format("{}/{}", where, i));
+      values(static_cast<Eigen::Index>(i)) = p[i].get<double>();
     }
-  }
-  stepper_->set_predictor(std::move(predictor));
+    return values;
+  };
+  stepper_->set_predictor(per_dof("predictor"));
+  stepper_->set_correction(per_dof("correction"));
   stepper_->set_time(frame * frame_duration());
 }
 

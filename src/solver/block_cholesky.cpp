@@ -1,9 +1,9 @@
 #include "sinew/solver/block_cholesky.hpp"
 
-#include <Eigen/Cholesky>
 #include <Eigen/OrderingMethods>
 #include <algorithm>
 
+#include "block_cholesky_kernels.hpp"
 #include "sinew/core/error.hpp"
 
 namespace sinew {
@@ -69,12 +69,13 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& M) {
     }
     std::vector<int>().swap(s);
   }
-  blocks_.assign(rows_.size(), Mat3::Zero());
-  diagonal_inverse_.assign(static_cast<size_t>(nv), Mat3::Identity());
+  blocks_.assign(rows_.size() * block_kernels::kBlock, 0.0);
+  diagonal_inverse_.assign(static_cast<size_t>(nv) * block_kernels::kBlock, 0.0);
+  work_.assign(4 * static_cast<size_t>(nv), 0);
 
   // Where M's lower triangle (in its own numbering, as Eigen's Lower reads it) goes among L's
   // blocks: entry (r, c), r >= c, of vertices (a, b) in the new order lands in block (a, b) at
-  // (r mod 3, c mod 3) when a >= b, else in block (b, a) transposed.
+  // (r mod 3, c mod 3) when a >= b, else in block (b, a) transposed (blocks padded to 4 rows).
   source_.clear();
   target_.clear();
   for (Eigen::Index c = 0; c < M.outerSize(); ++c)
@@ -91,7 +92,7 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& M) {
       const auto last = rows_.begin() + start_[static_cast<size_t>(b) + 1];
       const auto block = static_cast<int>(std::lower_bound(first, last, a) - rows_.begin());
       source_.push_back(k);
-      target_.push_back(9 * block + i + 3 * j);
+      target_.push_back(block_kernels::kBlock * block + i + 4 * j);
     }
   pattern_outer_.assign(M.outerIndexPtr(), M.outerIndexPtr() + M.outerSize() + 1);
   pattern_inner_.assign(M.innerIndexPtr(), M.innerIndexPtr() + M.nonZeros());
@@ -106,80 +107,28 @@ bool BlockCholesky::same_pattern(const Eigen::SparseMatrix<double>& M) const {
 
 bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& M) {
   if (!same_pattern(M)) analyze(M);
-  std::fill(blocks_.begin(), blocks_.end(), Mat3::Zero());
-  double* L = blocks_.data()->data();
+  std::fill(blocks_.begin(), blocks_.end(), 0.0);
+  double* L = blocks_.data();
   const double* values = M.valuePtr();
   for (size_t k = 0; k < source_.size(); ++k) L[target_[k]] = values[source_[k]];
-
-  // Left-looking: column j gets the updates of every earlier column k with a block in row j
-  // (k waits in the list of the row of its next unused block), then its own factor.
-  const int nv = vertices_;
-  std::vector<int> head(static_cast<size_t>(nv), -1), next(static_cast<size_t>(nv), -1),
-      cursor(static_cast<size_t>(nv), 0), position(static_cast<size_t>(nv), -1);
-  auto enqueue = [&](int k) {
-    const int row = rows_[static_cast<size_t>(cursor[static_cast<size_t>(k)])];
-    next[static_cast<size_t>(k)] = head[static_cast<size_t>(row)];
-    head[static_cast<size_t>(row)] = k;
-  };
-  for (int j = 0; j < nv; ++j) {
-    const int begin = start_[static_cast<size_t>(j)], end = start_[static_cast<size_t>(j) + 1];
-    for (int p = begin; p < end; ++p) position[static_cast<size_t>(rows_[static_cast<size_t>(p)])] = p;
-    for (int k = head[static_cast<size_t>(j)]; k != -1;) {
-      const int k_next = next[static_cast<size_t>(k)];
-      const int p = cursor[static_cast<size_t>(k)], k_end = start_[static_cast<size_t>(k) + 1];
-      const Mat3 Ljk_t = blocks_[static_cast<size_t>(p)].transpose();
-      for (int q = p; q < k_end; ++q)
-        blocks_[static_cast<size_t>(position[static_cast<size_t>(rows_[static_cast<size_t>(q)])])].noalias() -=
-            blocks_[static_cast<size_t>(q)] * Ljk_t;
-      if (p + 1 < k_end) {
-        cursor[static_cast<size_t>(k)] = p + 1;
-        enqueue(k);
-      }
-      k = k_next;
-    }
-    const Eigen::LLT<Mat3> llt(blocks_[static_cast<size_t>(begin)]);  // reads the lower triangle
-    if (llt.info() != Eigen::Success) return false;
-    const Mat3 Ljj = llt.matrixL();
-    const Mat3 inverse = Ljj.triangularView<Eigen::Lower>().solve(Mat3::Identity());
-    blocks_[static_cast<size_t>(begin)] = Ljj;
-    diagonal_inverse_[static_cast<size_t>(j)] = inverse;
-    const Mat3 inverse_t = inverse.transpose();
-    for (int p = begin + 1; p < end; ++p) blocks_[static_cast<size_t>(p)] = (blocks_[static_cast<size_t>(p)] * inverse_t).eval();
-    if (begin + 1 < end) {
-      cursor[static_cast<size_t>(j)] = begin + 1;
-      enqueue(j);
-    }
-  }
-  return true;
+  return block_kernels::factorize(vertices_, start_.data(), rows_.data(), L, diagonal_inverse_.data(), work_.data());
 }
 
-void BlockCholesky::forward(Eigen::Ref<Eigen::VectorXd> y, int first_block) const {
-  for (int j = first_block; j < vertices_; ++j) {
-    auto yj = y.segment<3>(3 * j);
-    if (yj.isZero(0.0)) continue;  // sparse right-hand sides: nothing to carry down
-    const Vec3 z = diagonal_inverse_[static_cast<size_t>(j)] * yj;
-    yj = z;
-    for (int p = start_[static_cast<size_t>(j)] + 1; p < start_[static_cast<size_t>(j) + 1]; ++p)
-      y.segment<3>(3 * rows_[static_cast<size_t>(p)]).noalias() -= blocks_[static_cast<size_t>(p)] * z;
-  }
+Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>> BlockCholesky::block(int p) const {
+  return Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>>(blocks_.data() + block_kernels::kBlock * p);
 }
 
-void BlockCholesky::backward(Eigen::Ref<Eigen::VectorXd> y) const {
-  for (int j = vertices_ - 1; j >= 0; --j) {
-    Vec3 s = y.segment<3>(3 * j);
-    for (int p = start_[static_cast<size_t>(j)] + 1; p < start_[static_cast<size_t>(j) + 1]; ++p)
-      s.noalias() -= blocks_[static_cast<size_t>(p)].transpose() * y.segment<3>(3 * rows_[static_cast<size_t>(p)]);
-    y.segment<3>(3 * j).noalias() = diagonal_inverse_[static_cast<size_t>(j)].transpose() * s;
-  }
+Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>> BlockCholesky::diagonal_inverse(int j) const {
+  return Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>>(diagonal_inverse_.data() + block_kernels::kBlock * j);
 }
 
 Eigen::VectorXd BlockCholesky::solve(const Eigen::VectorXd& b) const {
-  Eigen::VectorXd y(b.size());
-  for (int v = 0; v < vertices_; ++v) y.segment<3>(3 * new_of_old_[static_cast<size_t>(v)]) = b.segment<3>(3 * v);
-  forward(y, 0);
-  backward(y);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(4 * vertices_);  // padded, permuted
+  for (int v = 0; v < vertices_; ++v) y.segment<3>(4 * new_of_old_[static_cast<size_t>(v)]) = b.segment<3>(3 * v);
+  block_kernels::forward(vertices_, start_.data(), rows_.data(), blocks_.data(), diagonal_inverse_.data(), y.data(), 0);
+  block_kernels::backward(vertices_, start_.data(), rows_.data(), blocks_.data(), diagonal_inverse_.data(), y.data());
   Eigen::VectorXd x(b.size());
-  for (int v = 0; v < vertices_; ++v) x.segment<3>(3 * v) = y.segment<3>(3 * new_of_old_[static_cast<size_t>(v)]);
+  for (int v = 0; v < vertices_; ++v) x.segment<3>(3 * v) = y.segment<3>(4 * new_of_old_[static_cast<size_t>(v)]);
   return x;
 }
 
@@ -195,16 +144,16 @@ Eigen::MatrixXd BlockCholesky::solve(const Eigen::MatrixXd& B) const {
   for (int j = 0; j < vertices_; ++j) {
     auto yj = Y.middleRows<3>(3 * j);
     if (yj.isZero(0.0)) continue;  // sparse right-hand sides: nothing to carry down
-    z.noalias() = diagonal_inverse_[static_cast<size_t>(j)] * yj;
+    z.noalias() = diagonal_inverse(j) * yj;
     yj = z;
     for (int p = start_[static_cast<size_t>(j)] + 1; p < start_[static_cast<size_t>(j) + 1]; ++p)
-      Y.middleRows<3>(3 * rows_[static_cast<size_t>(p)]).noalias() -= blocks_[static_cast<size_t>(p)] * z;
+      Y.middleRows<3>(3 * rows_[static_cast<size_t>(p)]).noalias() -= block(p) * z;
   }
   for (int j = vertices_ - 1; j >= 0; --j) {
     z = Y.middleRows<3>(3 * j);
     for (int p = start_[static_cast<size_t>(j)] + 1; p < start_[static_cast<size_t>(j) + 1]; ++p)
-      z.noalias() -= blocks_[static_cast<size_t>(p)].transpose() * Y.middleRows<3>(3 * rows_[static_cast<size_t>(p)]);
-    Y.middleRows<3>(3 * j).noalias() = diagonal_inverse_[static_cast<size_t>(j)].transpose() * z;
+      z.noalias() -= block(p).transpose() * Y.middleRows<3>(3 * rows_[static_cast<size_t>(p)]);
+    Y.middleRows<3>(3 * j).noalias() = diagonal_inverse(j).transpose() * z;
   }
   Eigen::MatrixXd X(B.rows(), m);
   for (int v = 0; v < vertices_; ++v) X.middleRows<3>(3 * v) = Y.middleRows<3>(3 * new_of_old_[static_cast<size_t>(v)]);
@@ -213,15 +162,17 @@ Eigen::MatrixXd BlockCholesky::solve(const Eigen::MatrixXd& B) const {
 
 Eigen::MatrixXd BlockCholesky::gram(const Eigen::SparseMatrix<double, Eigen::RowMajor>& J) const {
   const Eigen::Index m = J.rows();
-  Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(J.cols(), m);
+  // Z padded like the kernels' vectors: its padding rows stay zero and add nothing to Z^T Z.
+  Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(4 * vertices_, m);
   for (Eigen::Index i = 0; i < m; ++i) {
     int first = vertices_;
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, i); it; ++it) {
       const int v = new_of_old_[static_cast<size_t>(it.col() / 3)];
-      Z(3 * v + it.col() % 3, i) = it.value();
+      Z(4 * v + it.col() % 3, i) = it.value();
       first = std::min(first, v);
     }
-    forward(Z.col(i), first);
+    block_kernels::forward(vertices_, start_.data(), rows_.data(), blocks_.data(), diagonal_inverse_.data(),
+                           Z.col(i).data(), first);
   }
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(m, m);
   W.selfadjointView<Eigen::Lower>().rankUpdate(Z.transpose());

@@ -52,6 +52,9 @@ struct EnergyLimitedStepSettings {
   // linearise first at v* plus its correction v - v* (when v* itself violates a constraint);
   // the same acceptance test (energy_limited_stepper.cpp).
   bool sqp_predictor = true;
+  // Where the two steps before both left a correction, the predictor adds half of their
+  // difference to the last one (energy_limited_stepper.cpp).
+  bool sqp_extrapolation = true;
   FactorizationReuse reuse;
 };
 
@@ -125,10 +128,14 @@ class EnergyLimitedStepper {
   // first Lagrangian Hessian. A resumed run restores them with the positions and velocities.
   const std::map<long, double>& multipliers() const { return multipliers_; }
   void set_multipliers(std::map<long, double> multipliers) { multipliers_ = std::move(multipliers); }
-  // The SQP predictor of the next step (the last step's v - v*, or empty): a resumed run
-  // restores it with the multipliers, so that it takes the steps an uninterrupted one takes.
+  // The SQP predictor of the next step (the last step's v - v*, extrapolated from the one
+  // before where that step left one too; or empty) and the last step's v - v* itself (or empty):
+  // a resumed run restores both with the multipliers, so that it takes the steps an
+  // uninterrupted one takes.
   const Eigen::VectorXd& predictor() const { return predictor_; }
   void set_predictor(Eigen::VectorXd predictor) { predictor_ = std::move(predictor); }
+  const Eigen::VectorXd& correction() const { return correction_; }
+  void set_correction(Eigen::VectorXd correction) { correction_ = std::move(correction); }
 
   const EnergyLimitedStepSettings& settings() const { return settings_; }
   const ElementForm& limited_form() const { return *limited_; }
@@ -143,7 +150,8 @@ class EnergyLimitedStepper {
   EnergyLimitedStepSettings settings_;
   std::unique_ptr<Factorization> factor_;
   std::map<long, double> multipliers_;  // of the last step's final LCP, by constraint key
-  Eigen::VectorXd predictor_;           // the last step's v - v* (empty: no prediction)
+  Eigen::VectorXd predictor_;           // the next step's guess of v - v* (empty: no prediction)
+  Eigen::VectorXd correction_;          // the last step's v - v* (empty: it left none)
   double time_ = 0.0;
 };
 

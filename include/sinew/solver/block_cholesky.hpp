@@ -40,9 +40,9 @@ class BlockCholesky {
   double nonzeros() const { return lnz_; }
 
  private:
-  // Forward (L y = y) and back (L^T y = y) substitution in the permuted order, in place.
-  void forward(Eigen::Ref<Eigen::VectorXd> y, int first_block) const;
-  void backward(Eigen::Ref<Eigen::VectorXd> y) const;
+  // L's block p and the inverse of column j's diagonal block, as 3x3 matrices.
+  Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>> block(int p) const;
+  Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>> diagonal_inverse(int j) const;
   bool same_pattern(const Eigen::SparseMatrix<double>& M) const;
 
   int vertices_ = 0;
@@ -50,10 +50,12 @@ class BlockCholesky {
   // L by block columns (permuted order): column j's blocks are [start_[j], start_[j + 1]), the
   // first its diagonal block, rows_ ascending.
   std::vector<int> start_, rows_;
-  std::vector<Mat3> blocks_;
-  std::vector<Mat3> diagonal_inverse_;  // inverse of each column's 3x3 Cholesky factor
+  // The blocks, each 3x3 padded to 4 rows (src/solver/block_cholesky_kernels.hpp), and the
+  // inverse of each column's 3x3 Cholesky factor, likewise.
+  std::vector<double> blocks_, diagonal_inverse_;
+  std::vector<int> work_;  // the factorisation's lists, 4 ints per vertex
   // For each block entry (b, i, j) of L's pattern that M fills: M's value index (its lower
-  // triangle in M's own numbering), and the entry's index 9 b + i + 3 j among blocks_' doubles.
+  // triangle in M's own numbering), and the entry's index 12 b + i + 4 j among blocks_' doubles.
   std::vector<int> source_, target_;
   std::vector<int> pattern_outer_, pattern_inner_;  // M's analysed pattern
   double flops_ = 0.0, lnz_ = 0.0;
