@@ -53,8 +53,8 @@ class BlockHessian {
       for (int j = 0; j < 3; ++j)
         for (int i = 0; i < 3; ++i) block[i + j * stride] += M(j, i);
     }
-    // Asks the cache for the block at slot k ahead of an add: scatter loops prefetch the next
-    // element's blocks while this one's stiffness is computed, since on a large lattice most
+    // Asks the cache for the block at slot k ahead of an add: scatter loops prefetch a later
+    // element's blocks while the stiffness before it is computed, since on a large lattice most
     // blocks come from L3 or memory (their three column segments are a column stride apart).
     void prefetch(int k) const {
       const double* block = values + 3 * k;
