@@ -217,6 +217,50 @@ TEST(BatchedHexStiffness, CurvatureDerivativesAreTheInvariantDerivativesWithoutP
   }
 }
 
+// Forwards to a material without being an InvariantMaterial, so ElasticForm takes its per-point
+// Material::pk1 path for it.
+class OpaqueMaterial final : public Material {
+ public:
+  explicit OpaqueMaterial(std::shared_ptr<const Material> m) : m_(std::move(m)) {}
+  std::string name() const override { return m_->name(); }
+  Domain domain() const override { return m_->domain(); }
+  double psi_stretch(const Vec3& s) const override { return m_->psi_stretch(s); }
+  Vec3 grad_stretch(const Vec3& s) const override { return m_->grad_stretch(s); }
+  Mat3 hess_stretch(const Vec3& s) const override { return m_->hess_stretch(s); }
+
+ protected:
+  double psi_impl(const Mat3& F) const override { return m_->psi(F); }
+  Mat3 pk1_impl(const Mat3& F) const override { return m_->pk1(F); }
+
+ private:
+  std::shared_ptr<const Material> m_;
+};
+
+TEST(BatchedHexStiffness, ElementGradientOfInvariantMaterialsIsBitwiseThePerPointOne) {
+  // The gradient loop calls an invariant material's derivatives once per element instead of
+  // Material::pk1 per point; same arithmetic, so the same bits (solves depend on them: the
+  // elbow's self-contact frame ends elsewhere at a 1e-13 difference).
+  const VolumeMesh mesh = box_lattice(Vec3::Zero(), Vec3(1.0, 0.7, 0.5), Eigen::Vector3i(4, 3, 3));
+  auto disc = std::make_shared<Discretization>(mesh);
+  for (const char* family : {"stable_neo_hookean", "fung", "arruda_boyce", "neo_hookean", "neo_hookean_decoupled"}) {
+    MaterialSpec spec;
+    spec.family = family;
+    spec.target = YoungPoisson{1e5, 0.45};
+    const auto material = build_material(spec);
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    Eigen::VectorXd x = mesh.rest_positions();
+    const double a = material->domain() == Domain::PositiveJ ? 0.02 : 0.2;
+    for (Eigen::Index i = 0; i < x.size(); ++i) x(i) = (i % 3 == 0 ? 1.6 : 0.8) * x(i) + a * u(rng);
+    Problem direct(mesh.num_vertices()), per_point(mesh.num_vertices());
+    direct.add_form(std::make_shared<ElasticForm>(disc, material, Projection::Clamp));
+    per_point.add_form(std::make_shared<ElasticForm>(disc, std::make_shared<OpaqueMaterial>(material), Projection::Clamp));
+    const Eigen::VectorXd g = direct.gradient(x), reference = per_point.gradient(x);
+    ASSERT_GT(reference.norm(), 0.0) << family;
+    EXPECT_EQ((g - reference).cwiseAbs().maxCoeff(), 0.0) << family;
+  }
+}
+
 TEST(BatchedHexStiffness, LatticeMatchesTheGenericPath) {
   // 3 x 3 x 3 cells share one rest shape: the kernel reads the per-shape gradient lanes.
   const VolumeMesh mesh = box_lattice(Vec3::Zero(), Vec3(1.0, 0.7, 0.5), Eigen::Vector3i::Constant(3));

@@ -61,6 +61,11 @@ class ElasticForm final : public ElementForm {
   double value_fixed(const Eigen::VectorXd& x) const;
   template <int N>
   void add_gradient_fixed(const Eigen::VectorXd& x, Eigen::VectorXd& g) const;
+  // ge += element e's gradient at node positions xe for an invariant material (one call to its
+  // derivatives per element); false, with ge unchanged, when the material is not one or a point
+  // is outside its domain.
+  template <int N>
+  bool add_invariant_gradient(Eigen::Index e, const Eigen::Matrix<double, 3, N>& xe, Eigen::Matrix<double, 3, N>& ge) const;
   // Element stiffness K_e (upper node-pair blocks) at x: body(e, K) for every element, in
   // parallel over colour groups.
   template <int N, class Body>

@@ -31,4 +31,8 @@ GeneralModelMaterial::Terms StableNeoHookean::curvature_terms(double Ic, double 
   return t;
 }
 
+void StableNeoHookean::curvature_derivatives_at(int n, const double* Ic, const double* J, Derivatives* out) const {
+  for (int i = 0; i < n; ++i) out[i] = derivatives(curvature_terms(Ic[i], J[i]));  // the class is final: inlined
+}
+
 }  // namespace sinew

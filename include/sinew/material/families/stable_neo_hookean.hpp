@@ -20,6 +20,7 @@ class StableNeoHookean final : public GeneralModelMaterial {
   std::string name() const override { return "stable_neo_hookean"; }
   Terms terms(double Ic, double J) const override;
   Terms curvature_terms(double Ic, double J) const override;  // no log
+  void curvature_derivatives_at(int n, const double* Ic, const double* J, Derivatives* out) const override;
   double alpha() const { return 1.0 + 0.75 * mu_ / lambda_; }
 
  private:
