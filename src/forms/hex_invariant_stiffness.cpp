@@ -91,9 +91,12 @@ bool hex_stiffness_kernel(const InvariantMaterial& material, Projection mode, co
   // + c_J d2J/dF2.
   double c_id[W], c_ff[W], c_fg[W], c_gg[W], c_J[W];
   const bool positive_j = material.domain() == Domain::PositiveJ;
-  for (int q = 0; q < W; ++q) {
+  for (int q = 0; q < W; ++q)
     if (!std::isfinite(Ic[q]) || !std::isfinite(J[q]) || (positive_j && !(J[q] > 0.0))) return false;
-    const InvariantMaterial::Derivatives d = material.curvature_derivatives(Ic[q], J[q]);
+  InvariantMaterial::Derivatives derivatives[W];
+  material.curvature_derivatives_at(W, Ic, J, derivatives);  // one call for all the points
+  for (int q = 0; q < W; ++q) {
+    const InvariantMaterial::Derivatives& d = derivatives[q];
     c_id[q] = 2.0 * d.dI;
     c_ff[q] = 4.0 * d.dII;
     c_fg[q] = 2.0 * d.dIJ;
