@@ -170,17 +170,6 @@ Eigensystem general_model_eigensystem(const SignedSvd& svd, const GeneralModelCo
   return es;
 }
 
-InvariantMaterial::Derivatives GeneralModelMaterial::derivatives(const Terms& t) {
-  Derivatives d;
-  d.psi = t.psi;
-  d.dI = t.dI;
-  d.dJ = t.dJ;
-  d.dII = t.dII;
-  d.dIJ = 0.0;
-  d.dJJ = t.dJJ;
-  return d;
-}
-
 InvariantMaterial::Derivatives GeneralModelMaterial::invariant_derivatives(double Ic,
                                                                           double J) const {
   return derivatives(terms(Ic, J));

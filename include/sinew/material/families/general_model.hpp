@@ -50,7 +50,17 @@ class GeneralModelMaterial : public InvariantMaterial {
   Derivatives invariant_derivatives(double Ic, double J) const final;
   Derivatives curvature_derivatives(double Ic, double J) const final { return derivatives(curvature_terms(Ic, J)); }
   static GeneralModelCoefficients coefficients(const Terms& t);  // Eq. 52
-  static Derivatives derivatives(const Terms& t);
+  // Inline: the batched element kernels call it per quadrature point.
+  static Derivatives derivatives(const Terms& t) {
+    Derivatives d;
+    d.psi = t.psi;
+    d.dI = t.dI;
+    d.dJ = t.dJ;
+    d.dII = t.dII;
+    d.dIJ = 0.0;
+    d.dJJ = t.dJJ;
+    return d;
+  }
 
  protected:
   Eigensystem eigensystem_impl(const Mat3& F) const override;
