@@ -1,11 +1,11 @@
 #pragma once
 // The Galerkin coarse operator C = P^T A P of a symmetric matrix of 3x3 vertex blocks, with P a
 // VertexInterpolation restricted to the free DOFs (fixed fine DOFs are dropped; a coarse DOF
-// left with no free fine DOF gets an identity row). The pattern of C and a colouring of the fine
-// vertices are found once (symbolic); each Newton matrix then costs one pass over A: per fine
-// vertex a, the row (A P)_a is formed once and scattered into the rows of C that a interpolates,
-// in parallel over the vertices of one colour (no two of them share a coarse vertex), so there
-// are no races and the sums are deterministic.
+// left with no free fine DOF gets an identity row). The pattern of C and, per coarse vertex, the
+// fine vertices it interpolates are found once (symbolic); each Newton matrix then costs one
+// pass over C: row I is the sum of w_aI (A P)_a over those fine vertices a, in parallel over the
+// rows (no races), each row's terms in a fixed order (a colouring of the fine vertices), so the
+// sums are deterministic.
 #include <Eigen/Sparse>
 #include <span>
 #include <vector>
@@ -34,7 +34,7 @@ class GalerkinProduct {
                BlockSparseMatrix& C) const;
   void compute(const BlockSparseMatrix& A, std::span<const char> fine_free, std::span<const char> coarse_free,
                BlockSparseMatrix& C) const;
-  int colors() const { return static_cast<int>(colors_.size()); }
+  int colors() const { return colors_; }
 
  private:
   template <class BlockRow>
@@ -43,7 +43,11 @@ class GalerkinProduct {
 
   const VertexInterpolation* P_ = nullptr;
   std::vector<std::vector<int>> coarse_pattern_;
-  std::vector<std::vector<int>> colors_;  // fine vertices by colour
+  int colors_ = 0;  // of fine vertices sharing no coarse vertex: they order each row's terms
+  // Per coarse vertex I, entries [gather_offsets_[I], gather_offsets_[I + 1]) of gather_entries_:
+  // the interpolation entries k (fine vertex entry_fine_[k], weight P.weight[k]) with coarse
+  // vertex I, by colour of their fine vertex.
+  std::vector<int> gather_offsets_, gather_entries_, entry_fine_;
 };
 
 }  // namespace sinew
