@@ -238,21 +238,24 @@ TEST(GalerkinProduct, EqualsTheExplicitTripleProductOverTheFreeDofs) {
 }
 
 // A matrix whose vertex columns are not full 3x3 blocks (as a caller's own sparse matrix may be)
-// takes the general reading of its columns and gives the same product. Column 23 (vertex 7)
-// loses an entry of vertex 4's block and gains one of the last vertex's: its three columns keep
+// takes the general reading of its columns and gives the same product. Column 3b + 2 (vertex b)
+// loses an entry of vertex a's block and gains one of the last vertex's: its three columns keep
 // equal lengths, but their rows no longer come in whole blocks.
 TEST(GalerkinProduct, MatricesWithoutFullBlocksGiveTheTripleProductToo) {
   Bar bar(Eigen::Vector3i(5, 4, 3), 0.45, 1.0);
   const Eigen::SparseMatrix<double>& H = *bar.problem->hessian(bar.x).matrix();
-  const int last = static_cast<int>(H.rows()) - 3;  // first DOF of the last vertex, not coupled to vertex 7
-  std::vector<Eigen::Triplet<double>> t = {{last, 23, 0.5}, {23, last, 0.5}};
+  const int a = 70, b = 71;  // neighbours above the two pinned layers (6 x 5 vertices each)
+  const int r = 3 * a + 1, c = 3 * b + 2;
+  ASSERT_FALSE(bar.fixed[static_cast<size_t>(r)] || bar.fixed[static_cast<size_t>(c)]);
+  const int last = static_cast<int>(H.rows()) - 3;  // first DOF of the last vertex, not coupled to b
+  std::vector<Eigen::Triplet<double>> t = {{last, c, 0.5}, {c, last, 0.5}};
   int dropped = 0;
-  for (int c = 0; c < H.outerSize(); ++c)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(H, c); it; ++it) {
-      const bool drop = (it.row() == 13 && c == 23) || (it.row() == 23 && c == 13);  // vertices 4 and 7
+  for (int col = 0; col < H.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, col); it; ++it) {
+      const bool drop = (it.row() == r && col == c) || (it.row() == c && col == r);
       dropped += drop ? 1 : 0;
-      if (!drop) t.emplace_back(static_cast<int>(it.row()), c, it.value());
-      EXPECT_FALSE((it.row() == last && c == 23) || (it.row() == 23 && c == last));
+      if (!drop) t.emplace_back(static_cast<int>(it.row()), col, it.value());
+      EXPECT_FALSE((it.row() == last && col == c) || (it.row() == c && col == last));
     }
   ASSERT_EQ(dropped, 2);
   Eigen::SparseMatrix<double> A(H.rows(), H.cols());
