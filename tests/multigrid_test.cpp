@@ -275,6 +275,36 @@ TEST(GalerkinProduct, MatricesWithoutFullBlocksGiveTheTripleProductToo) {
   EXPECT_LE((dense(C) - expected).norm(), 1e-12 * expected.norm());
 }
 
+// A lattice large enough that the rows (A P)_a kept for reuse are replaced while a task runs
+// (more than 2048 fine vertices per task): still the triple product.
+TEST(GalerkinProduct, LargeLatticesGiveTheTripleProduct) {
+  Bar bar(Eigen::Vector3i(24, 20, 16), 0.45, 1.0);
+  const Eigen::SparseMatrix<double>& A = *bar.problem->hessian(bar.x).matrix();
+  const LatticeHierarchy h = lattice_hierarchy(bar.disc->mesh(), 1, 2);
+  std::vector<char> free0(bar.fixed.size());
+  for (size_t i = 0; i < free0.size(); ++i) free0[i] = bar.fixed[i] ? 0 : 1;
+  const VertexInterpolation& P0 = h.interpolations[0];
+  const std::vector<char> free1 = P0.coarse_free(free0);
+  const GalerkinProduct g(block_pattern(A), P0);
+  BlockSparseMatrix C = g.make_coarse();
+  tbb::global_control one_task(tbb::global_control::max_allowed_parallelism, 1);
+  g.compute(A, free0, free1, C);
+  const Eigen::SparseMatrix<double> M = masked_interpolation(P0, free0);
+  Eigen::SparseMatrix<double> expected = M.transpose() * A * M;
+  double error = 0.0, norm = 0.0;
+  for (int r = 0; r < static_cast<int>(C.block_rows()); ++r)
+    for (int k = C.row_begin(r); k < C.row_end(r); ++k)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const int row = 3 * r + i, col = 3 * C.column(k) + j;
+          const double want = free1[static_cast<size_t>(row)] ? expected.coeff(row, col) : (row == col ? 1.0 : 0.0);
+          error = std::max(error, std::abs(C.block(k)(i, j) - want));
+          norm = std::max(norm, std::abs(want));
+        }
+  EXPECT_GT(norm, 0.0);
+  EXPECT_LE(error, 1e-12 * norm);
+}
+
 // Rows of C are summed in parallel, each in a fixed order: the same bits with one thread or two.
 TEST(GalerkinProduct, IsBitwiseTheSameWithOneThreadOrTwo) {
   Bar bar(Eigen::Vector3i(9, 8, 7), 0.45, 1.0);

@@ -108,20 +108,55 @@ void GalerkinProduct::compute_rows(const BlockRow& row, std::span<const char> fi
   // once, all in cache.
   //
   // Per thread, indexed by coarse vertex: J's position in the row (A P)_a being formed, and J's
-  // slot in row I of C (-1 where unset; each use resets what it set).
+  // slot in row I of C (-1 where unset; each use resets what it set). And the rows (A P)_a formed
+  // last (first in, first out), indexed by fine vertex: a task's consecutive coarse rows share
+  // fine vertices (the neighbour along the grid's first axis a third of them, the row before
+  // along the second most of the rest), so most (A P)_a are formed once or twice, not 3.4 times.
+  // Taken from the pool or formed anew, (A P)_a is the same, so C does not depend on it.
+  constexpr int pool_size = 2048;
   struct Scratch {
-    BlockList Arow, AProw;
-    std::vector<int> position, slot;
+    BlockList Arow;
+    std::vector<BlockList> pool;
+    std::vector<int> pool_vertex;  // fine vertex of each pool entry (-1: none)
+    int next = 0;                  // the entry to replace next
+    std::vector<int> position, slot, pooled;
   };
   tbb::enumerable_thread_specific<Scratch> scratch;
-  const size_t nc = static_cast<size_t>(P.coarse_vertices);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, nc, 16), [&](const auto& range) {
+  const size_t nc = static_cast<size_t>(P.coarse_vertices), nf = static_cast<size_t>(P.fine_vertices());
+  // (A P)_a = sum_b M_a A_ab M_b w_bJ, with M the free-DOF masks.
+  const auto form_row = [&](Scratch& s, int a, BlockList& AProw) {
+    BlockList& Arow = s.Arow;
+    Arow.clear();
+    row(a, Arow);
+    const bool a_free = fine_free[static_cast<size_t>(3 * a)] && fine_free[static_cast<size_t>(3 * a + 1)] &&
+                        fine_free[static_cast<size_t>(3 * a + 2)];
+    AProw.clear();
+    for (auto& [b, B] : Arow) {
+      for (int i = 0; i < 3; ++i) {
+        if (!a_free && !fine_free[static_cast<size_t>(3 * a + i)]) B.row(i).setZero();
+        if (!fine_free[static_cast<size_t>(3 * b + i)]) B.col(i).setZero();
+      }
+      for (int m = P.offsets[static_cast<size_t>(b)]; m < P.offsets[static_cast<size_t>(b) + 1]; ++m) {
+        const size_t J = static_cast<size_t>(P.coarse[static_cast<size_t>(m)]);
+        if (s.position[J] < 0) {
+          s.position[J] = static_cast<int>(AProw.size());
+          AProw.emplace_back(static_cast<int>(J), Mat3::Zero());
+        }
+        AProw[static_cast<size_t>(s.position[J])].second += P.weight[static_cast<size_t>(m)] * B;
+      }
+    }
+    for (const auto& entry : AProw) s.position[static_cast<size_t>(entry.first)] = -1;
+  };
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nc, 64), [&](const auto& range) {
     Scratch& s = scratch.local();
-    if (s.position.size() != nc) {
+    if (s.position.size() != nc || s.pooled.size() != nf) {
       s.position.assign(nc, -1);
       s.slot.assign(nc, -1);
+      s.pooled.assign(nf, -1);
+      s.pool.assign(pool_size, {});
+      s.pool_vertex.assign(pool_size, -1);
+      s.next = 0;
     }
-    BlockList &Arow = s.Arow, &AProw = s.AProw;
     for (size_t I = range.begin(); I != range.end(); ++I) {
       const int row_begin = C.row_begin(static_cast<int>(I)), row_end = C.row_end(static_cast<int>(I));
       for (int t = row_begin; t < row_end; ++t) {
@@ -131,29 +166,18 @@ void GalerkinProduct::compute_rows(const BlockRow& row, std::span<const char> fi
       for (int e = gather_offsets_[I]; e < gather_offsets_[I + 1]; ++e) {
         const int k = gather_entries_[static_cast<size_t>(e)];
         const int a = entry_fine_[static_cast<size_t>(k)];
-        Arow.clear();
-        row(a, Arow);
-        const bool a_free = fine_free[static_cast<size_t>(3 * a)] && fine_free[static_cast<size_t>(3 * a + 1)] &&
-                            fine_free[static_cast<size_t>(3 * a + 2)];
-        // (A P)_a = sum_b M_a A_ab M_b w_bJ, with M the free-DOF masks.
-        AProw.clear();
-        for (auto& [b, B] : Arow) {
-          for (int i = 0; i < 3; ++i) {
-            if (!a_free && !fine_free[static_cast<size_t>(3 * a + i)]) B.row(i).setZero();
-            if (!fine_free[static_cast<size_t>(3 * b + i)]) B.col(i).setZero();
-          }
-          for (int m = P.offsets[static_cast<size_t>(b)]; m < P.offsets[static_cast<size_t>(b) + 1]; ++m) {
-            const size_t J = static_cast<size_t>(P.coarse[static_cast<size_t>(m)]);
-            if (s.position[J] < 0) {
-              s.position[J] = static_cast<int>(AProw.size());
-              AProw.emplace_back(static_cast<int>(J), Mat3::Zero());
-            }
-            AProw[static_cast<size_t>(s.position[J])].second += P.weight[static_cast<size_t>(m)] * B;
-          }
+        int entry = s.pooled[static_cast<size_t>(a)];
+        if (entry < 0) {
+          entry = s.next;
+          s.next = (s.next + 1) % pool_size;
+          if (s.pool_vertex[static_cast<size_t>(entry)] >= 0)
+            s.pooled[static_cast<size_t>(s.pool_vertex[static_cast<size_t>(entry)])] = -1;
+          form_row(s, a, s.pool[static_cast<size_t>(entry)]);
+          s.pool_vertex[static_cast<size_t>(entry)] = a;
+          s.pooled[static_cast<size_t>(a)] = entry;
         }
-        for (const auto& entry : AProw) s.position[static_cast<size_t>(entry.first)] = -1;
         const double w = P.weight[static_cast<size_t>(k)];
-        for (const auto& [J, B] : AProw) {
+        for (const auto& [J, B] : s.pool[static_cast<size_t>(entry)]) {
           const int slot = s.slot[static_cast<size_t>(J)];
           if (slot < 0) throw Error("the matrix's pattern changed since the symbolic product", "Galerkin product");
           C.block(slot) += w * B;
