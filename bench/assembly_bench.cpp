@@ -4,7 +4,9 @@
 // hexahedron, at a stretched and randomly perturbed state where about half the quadrature
 // points are indefinite (as in the stretch test). Medians of --repeats runs. With
 // --matrix-free also the matrix-free Hessian (element matrices kept in single precision):
-// its set-up time, one product and its bytes per hexahedron. The digests (FNV-1a of the values'
+// its set-up time, one product and its bytes per hexahedron. Also the multigrid's first Galerkin
+// product P^T A P (the lattice coarsened once, the z = 0 face's DOFs fixed), which each Newton
+// iteration's preconditioner setup pays. The digests (FNV-1a of the values'
 // bits) tell whether two builds assemble bitwise the same Hessian and gradient.
 //
 //   assembly_bench [--sizes 16,33] [--repeats 5] [--threads N] [--matrix-free] [--cpu-time]
@@ -21,8 +23,10 @@
 
 #include "sinew/assembly/problem.hpp"
 #include "sinew/forms/elastic_form.hpp"
+#include "sinew/linalg/galerkin_product.hpp"
 #include "sinew/material/spec.hpp"
 #include "sinew/mesh/lattice.hpp"
+#include "sinew/solver/lattice_hierarchy.hpp"
 
 namespace {
 
@@ -114,8 +118,20 @@ int main(int argc, char** argv) {
     fmt::print("     product: {:.2f} M hex/s; gradient {:.3f} M hex/s; energy {:.3f} M hex/s\n", hexes / product * 1e-6,
                hexes / gradient * 1e-6, hexes / energy * 1e-6);
     const Eigen::VectorXd g = problem.gradient(x);
-    fmt::print("     digests: hessian {:016x}, gradient {:016x}\n", digest(A.valuePtr(), A.nonZeros()),
-               digest(g.data(), g.size()));
+    // The first Galerkin product, outside the timing: its symbolic part (pattern, orders).
+    const LatticeHierarchy hierarchy = lattice_hierarchy(mesh, 1, 2);
+    const VertexInterpolation& P = hierarchy.interpolations.at(0);
+    std::vector<char> fine_free(static_cast<size_t>(x.size()), 1);
+    for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v)
+      if (mesh.vertices(v, 2) == 0.0)
+        for (int i = 0; i < 3; ++i) fine_free[static_cast<size_t>(3 * v + i)] = 0;
+    const std::vector<char> coarse_free = P.coarse_free(fine_free);
+    const GalerkinProduct galerkin(block_pattern(A), P);
+    BlockSparseMatrix C = galerkin.make_coarse();
+    const double coarse = median_seconds(repeats, [&] { galerkin.compute(A, fine_free, coarse_free, C); });
+    fmt::print("     Galerkin P^T A P: {:.1f} ms ({:.3f} M hex/s)\n", 1e3 * coarse, hexes / coarse * 1e-6);
+    fmt::print("     digests: hessian {:016x}, gradient {:016x}, Galerkin {:016x}\n", digest(A.valuePtr(), A.nonZeros()),
+               digest(g.data(), g.size()), digest(C.block(0).data(), 9 * C.num_blocks()));
     if (!matrix_free) continue;
     const Eigen::VectorXd assembled_y = y;
     problem.set_matrix_free(true);
