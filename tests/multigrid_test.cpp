@@ -17,6 +17,7 @@
 #include "spd_test_support.hpp"
 #include "sinew/assembly/problem.hpp"
 #include "sinew/forms/elastic_form.hpp"
+#include "sinew/linalg/block_hessian.hpp"
 #include "sinew/linalg/element_galerkin.hpp"
 #include "sinew/linalg/galerkin_product.hpp"
 #include "sinew/material/families/corotational.hpp"
@@ -497,6 +498,64 @@ TEST(MultigridPreconditioner, AnIndefiniteTrueHessianEndsThePcgSolveUnconverged)
   // works again on the next positive matrix.
   expect_contains(error_message([&] { pcg.solve(N, b, x, 1e-8, bar.context()); }), {"coarsest level"});
   EXPECT_TRUE(pcg.solve(H, b, x, 1e-8, bar.context()).converged);
+}
+
+// A Newton Hessian's pattern id stands for its pattern (no copy kept, no comparison): the next
+// matrix with the same id reuses the symbolic products, and a matrix with a new pattern (a
+// contact coupling two far vertices) gets new ones, as does an operator without an id.
+TEST(MultigridPreconditioner, ReusesSymbolicProductsByPatternIdAndRedoesThemForANewPattern) {
+  Bar bar(Eigen::Vector3i(6, 5, 7), 0.49);
+  const LinearOperator& H = bar.problem->hessian(bar.x);
+  ASSERT_NE(H.pattern_id(), 0u);
+  const Eigen::SparseMatrix<double>& A = *H.matrix();
+  const int n = static_cast<int>(A.rows() / 3);
+  // The same matrix plus a coupling between the first and the last vertex.
+  const VolumeMesh& mesh = bar.disc->mesh();
+  std::vector<std::vector<int>> cliques;
+  for (Eigen::Index e = 0; e < mesh.num_elements(); ++e) {
+    std::vector<int> v(8);
+    for (int a = 0; a < 8; ++a) v[static_cast<size_t>(a)] = mesh.elements(e, a);
+    cliques.push_back(v);
+  }
+  cliques.push_back({0, n - 1});
+  BlockHessian coupled(n, cliques);
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) coupled.matrix().coeffRef(it.row(), c) = it.value();
+  const double k = 1e-3 * A.diagonal().cwiseAbs().maxCoeff();
+  coupled.add_block(0, 0, k * Mat3::Identity());
+  coupled.add_block(n - 1, n - 1, k * Mat3::Identity());
+  coupled.add_block(0, n - 1, -k * Mat3::Identity());
+  coupled.add_block(n - 1, 0, -k * Mat3::Identity());
+  const BlockHessianOperator coupled_op(coupled);
+  ASSERT_NE(coupled_op.pattern_id(), H.pattern_id());
+
+  MultigridSettings settings;
+  settings.coarsest_dofs = 30;
+  const Eigen::VectorXd r = bar.rhs();
+  auto fresh = [&](const LinearOperator& op) {
+    MultigridPreconditioner F(settings);
+    F.setup(op, bar.context());
+    Eigen::VectorXd z;
+    F.apply(r, z);
+    return z;
+  };
+  MultigridPreconditioner M(settings);
+  Eigen::VectorXd z;
+  M.setup(H, bar.context());
+  M.setup(H, bar.context());  // same id: reused
+  M.apply(r, z);
+  EXPECT_TRUE(z == fresh(H));
+  M.setup(coupled_op, bar.context());  // new id: new symbolic products
+  M.apply(r, z);
+  EXPECT_TRUE(z == fresh(coupled_op));
+  const SparseOperator plain(A);  // no id: compared with a kept copy of the pattern
+  ASSERT_EQ(plain.pattern_id(), 0u);
+  M.setup(plain, bar.context());
+  M.apply(r, z);
+  EXPECT_TRUE(z == fresh(H));
+  M.setup(coupled_op, bar.context());
+  M.apply(r, z);
+  EXPECT_TRUE(z == fresh(coupled_op));
 }
 
 TEST(MultigridPreconditioner, IsBlockJacobiWithoutALatticeAndNeedsTheMatrix) {

@@ -104,6 +104,7 @@ class BlockHessianOperator final : public LinearOperator {
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override { H_->multiply(x, y); }
   Mat3 diagonal_block(Eigen::Index v) const override { return H_->diagonal_block(static_cast<int>(v)); }
   const Eigen::SparseMatrix<double>* matrix() const override { return &H_->matrix(); }
+  std::uint64_t pattern_id() const override { return H_->pattern_id(); }
 
  private:
   const BlockHessian* H_;

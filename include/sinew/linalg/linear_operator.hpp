@@ -3,6 +3,7 @@
 // today an assembled sparse matrix; a matrix-free, multigrid or GPU backend implements the
 // same interface (apply, block diagonal) and plugs in without touching the Newton loop.
 #include <Eigen/Sparse>
+#include <cstdint>
 
 #include "sinew/core/types.hpp"
 #include "sinew/linalg/element_matrices.hpp"
@@ -19,6 +20,10 @@ class LinearOperator {
   virtual Mat3 diagonal_block(Eigen::Index v) const = 0;
   // The assembled matrix when there is one (direct solvers need it), else nullptr.
   virtual const Eigen::SparseMatrix<double>* matrix() const { return nullptr; }
+  // An id that changes whenever matrix()'s sparsity pattern may have changed, so that
+  // preconditioners can reuse symbolic work without keeping and comparing the pattern; 0 when
+  // unknown (then they compare).
+  virtual std::uint64_t pattern_id() const { return 0; }
   // A matrix-free operator as a sum of element matrices (its Dirichlet identity rows left out),
   // for preconditioners that need more than products; nullptr when it has none.
   virtual const ElementMatrices* element_matrices() const { return nullptr; }
