@@ -238,6 +238,17 @@ TEST(GalerkinProduct, EqualsTheExplicitTripleProductOverTheFreeDofs) {
   EXPECT_LE((y - expected2 * u).norm(), 1e-12 * (expected2 * u).norm());
 }
 
+// The bar's lattice coarsened once, with its fixed DOFs masked out on both levels.
+struct OneCoarsening {
+  LatticeHierarchy h;
+  std::vector<char> free0, free1;
+  explicit OneCoarsening(const Bar& bar) : h(lattice_hierarchy(bar.disc->mesh(), 1, 2)), free0(bar.fixed.size()) {
+    for (size_t i = 0; i < free0.size(); ++i) free0[i] = bar.fixed[i] ? 0 : 1;
+    free1 = P().coarse_free(free0);
+  }
+  const VertexInterpolation& P() const { return h.interpolations[0]; }
+};
+
 // A matrix whose vertex columns are not full 3x3 blocks (as a caller's own sparse matrix may be)
 // takes the general reading of its columns and gives the same product. Column 3b + 2 (vertex b)
 // loses an entry of vertex a's block and gains one of the last vertex's: its three columns keep
@@ -261,11 +272,9 @@ TEST(GalerkinProduct, MatricesWithoutFullBlocksGiveTheTripleProductToo) {
   ASSERT_EQ(dropped, 2);
   Eigen::SparseMatrix<double> A(H.rows(), H.cols());
   A.setFromTriplets(t.begin(), t.end());
-  const LatticeHierarchy h = lattice_hierarchy(bar.disc->mesh(), 1, 2);
-  std::vector<char> free0(bar.fixed.size());
-  for (size_t i = 0; i < free0.size(); ++i) free0[i] = bar.fixed[i] ? 0 : 1;
-  const VertexInterpolation& P0 = h.interpolations[0];
-  const std::vector<char> free1 = P0.coarse_free(free0);
+  const OneCoarsening level(bar);
+  const VertexInterpolation& P0 = level.P();
+  const std::vector<char>&free0 = level.free0, &free1 = level.free1;
   const GalerkinProduct g(block_pattern(A), P0);
   BlockSparseMatrix C = g.make_coarse();
   g.compute(A, free0, free1, C);
@@ -281,11 +290,9 @@ TEST(GalerkinProduct, MatricesWithoutFullBlocksGiveTheTripleProductToo) {
 TEST(GalerkinProduct, LargeLatticesGiveTheTripleProduct) {
   Bar bar(Eigen::Vector3i(24, 20, 16), 0.45, 1.0);
   const Eigen::SparseMatrix<double>& A = *bar.problem->hessian(bar.x).matrix();
-  const LatticeHierarchy h = lattice_hierarchy(bar.disc->mesh(), 1, 2);
-  std::vector<char> free0(bar.fixed.size());
-  for (size_t i = 0; i < free0.size(); ++i) free0[i] = bar.fixed[i] ? 0 : 1;
-  const VertexInterpolation& P0 = h.interpolations[0];
-  const std::vector<char> free1 = P0.coarse_free(free0);
+  const OneCoarsening level(bar);
+  const VertexInterpolation& P0 = level.P();
+  const std::vector<char>&free0 = level.free0, &free1 = level.free1;
   const GalerkinProduct g(block_pattern(A), P0);
   BlockSparseMatrix C = g.make_coarse();
   tbb::global_control one_task(tbb::global_control::max_allowed_parallelism, 1);
@@ -310,11 +317,9 @@ TEST(GalerkinProduct, LargeLatticesGiveTheTripleProduct) {
 TEST(GalerkinProduct, IsBitwiseTheSameWithOneThreadOrTwo) {
   Bar bar(Eigen::Vector3i(9, 8, 7), 0.45, 1.0);
   const Eigen::SparseMatrix<double>& A = *bar.problem->hessian(bar.x).matrix();
-  const LatticeHierarchy h = lattice_hierarchy(bar.disc->mesh(), 1, 2);
-  std::vector<char> free0(bar.fixed.size());
-  for (size_t i = 0; i < free0.size(); ++i) free0[i] = bar.fixed[i] ? 0 : 1;
-  const VertexInterpolation& P0 = h.interpolations[0];
-  const std::vector<char> free1 = P0.coarse_free(free0);
+  const OneCoarsening level(bar);
+  const VertexInterpolation& P0 = level.P();
+  const std::vector<char>&free0 = level.free0, &free1 = level.free1;
   const GalerkinProduct g(block_pattern(A), P0);
   auto product = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
