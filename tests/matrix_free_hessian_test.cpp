@@ -2,6 +2,7 @@
 // products and diagonal blocks to single precision, with Dirichlet DOFs, a rotated vertex frame
 // and an assembled second form; the same Newton solution; the memory it keeps.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <random>
 
@@ -56,6 +57,32 @@ Case make_case(ElementKind kind, bool with_inertia) {
     for (int i = 0; i < 3; ++i) s.x(3 * v + i) += u(rng);
   }
   return s;
+}
+
+// The matrix-free product runs over coloured runs of consecutive elements in parallel, each
+// run in order and the colours one after another: the same bits with one thread or two.
+TEST(MatrixFreeProduct, IsBitwiseTheSameWithOneThreadOrTwo) {
+  const VolumeMesh mesh = box_lattice(Eigen::Vector3d::Zero(), Eigen::Vector3d(1.0, 0.8, 0.6), Eigen::Vector3i(12, 10, 8));
+  auto disc = std::make_shared<Discretization>(mesh);
+  Problem problem(mesh.num_vertices());
+  problem.add_form(std::make_shared<ElasticForm>(disc, stable_neo_hookean(), Projection::Clamp));
+  problem.set_matrix_free(true);
+  Eigen::VectorXd x = mesh.rest_positions();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.02, 0.02);
+  for (Eigen::Index i = 0; i < x.size(); ++i) x(i) += u(rng);
+  const LinearOperator& op = problem.hessian(x);
+  ASSERT_EQ(op.matrix(), nullptr);
+  const Eigen::VectorXd p = Eigen::VectorXd::LinSpaced(x.size(), -1.0, 1.0);
+  auto product = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    Eigen::VectorXd y;
+    op.apply(p, y);
+    return y;
+  };
+  const Eigen::VectorXd one = product(1), two = product(2);
+  EXPECT_GT(one.norm(), 0.0);
+  EXPECT_TRUE(one == two);
 }
 
 class MatrixFreeHessian : public ::testing::TestWithParam<std::tuple<ElementKind, bool>> {};

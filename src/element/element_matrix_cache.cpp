@@ -35,22 +35,25 @@ template <int N>
 void add_product_fixed(const Discretization& d, const std::vector<float>& values, std::size_t per_element,
                        const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const auto& elements = d.mesh().elements;
-  for (const auto& group : d.color_groups()) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, group.size(), 64), [&](const auto& range) {
+  // Runs of consecutive elements, coloured so that runs of one colour share no vertex: the kept
+  // values stream in order, and a run's x and y entries stay in cache from one element to the
+  // next (single elements of one colour are spread over the whole mesh).
+  for (const auto& runs : d.run_colors()) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs.size(), 1), [&](const auto& range) {
       // In single precision like the kept values (no conversion per block); the element's sum is
       // added to y in double.
       Eigen::Matrix<float, 3 * N, 1> xe, ye;
       int v[N];
-      for (std::size_t idx = range.begin(); idx != range.end(); ++idx) {
-        const Eigen::Index e = group[idx];
-        for (int a = 0; a < N; ++a) {
-          v[a] = elements(e, a);
-          xe.template segment<3>(3 * a) = x.segment<3>(3 * v[a]).template cast<float>();
+      for (std::size_t run = range.begin(); run != range.end(); ++run)
+        for (Eigen::Index e = runs[run].first; e != runs[run].end; ++e) {
+          for (int a = 0; a < N; ++a) {
+            v[a] = elements(e, a);
+            xe.template segment<3>(3 * a) = x.segment<3>(3 * v[a]).template cast<float>();
+          }
+          ye.setZero();
+          element_product<N>(values.data() + static_cast<std::size_t>(e) * per_element, xe, ye);
+          for (int a = 0; a < N; ++a) y.segment<3>(3 * v[a]) += ye.template segment<3>(3 * a).template cast<double>();
         }
-        ye.setZero();
-        element_product<N>(values.data() + static_cast<std::size_t>(e) * per_element, xe, ye);
-        for (int a = 0; a < N; ++a) y.segment<3>(3 * v[a]) += ye.template segment<3>(3 * a).template cast<double>();
-      }
     });
   }
 }
