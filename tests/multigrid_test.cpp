@@ -401,7 +401,7 @@ TEST(ElementGalerkin, EqualsTheGalerkinProductOfTheAssembledMatrix) {
   BlockSparseMatrix expected = assembled.make_coarse();
   assembled.compute(A, free0, free1, expected);
   const ElementGalerkin by_elements(elements, P);
-  EXPECT_GE(by_elements.colors(), 8);  // the eight cells of a coarse cell share all its corners
+  EXPECT_GE(by_elements.colors(), 8);  // neighbouring coarse cells (the groups of elements) share corners
   BlockSparseMatrix C = by_elements.make_coarse();
   by_elements.compute(elements, free0, free1, C);
   const Eigen::MatrixXd D = dense(expected);

@@ -3,8 +3,9 @@
 // (linalg/element_matrices.hpp), without assembling A: C = sum_e P_e^T K_e P_e, where P_e holds
 // the interpolation rows of element e's vertices restricted to the free DOFs. The same product as
 // GalerkinProduct (linalg/galerkin_product.hpp) computes from an assembled A, for matrix-free
-// Newton systems whose fine matrix is never formed. The symbolic part (the pattern of C and a
-// colouring of the elements in which no two elements of a colour share a coarse vertex) is built
+// Newton systems whose fine matrix is never formed. The symbolic part (the pattern of C, and the
+// elements grouped by their coarse vertices, the groups coloured so that no two groups of a colour
+// share a coarse vertex) is built
 // once per ElementMatrices::structure_id(); each numeric product is then one parallel pass over
 // the elements without atomics, with a fixed summation order.
 #include <cstdint>
@@ -36,8 +37,12 @@ class ElementGalerkin {
   const VertexInterpolation* P_ = nullptr;
   std::uint64_t structure_id_ = 0;
   std::vector<std::vector<int>> coarse_pattern_;
-  std::vector<std::vector<Eigen::Index>> colors_;  // elements by colour
-  std::vector<Eigen::Index> serial_;               // elements no colour was left for (done serially)
+  // Groups of elements with the same coarse vertices (CSR: group g's elements are
+  // group_elements_[group_offsets_[g] .. group_offsets_[g + 1])), by colour.
+  std::vector<std::int64_t> group_offsets_;
+  std::vector<Eigen::Index> group_elements_;
+  std::vector<std::vector<int>> colors_;  // groups by colour
+  std::vector<Eigen::Index> serial_;      // elements of the groups no colour was left for (done serially)
 };
 
 }  // namespace sinew
