@@ -102,12 +102,11 @@ void ElementMatrixCache::unpack(Eigen::Index e, Eigen::Ref<Eigen::MatrixXd> K) c
 
 void ElementMatrixCache::add_diagonal(std::vector<Mat3>& diagonal) const {
   const auto& elements = d_->mesh().elements;
-  for (const auto& group : d_->color_groups()) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, group.size(), 256), [&](const auto& range) {
-      for (std::size_t idx = range.begin(); idx != range.end(); ++idx) {
-        const Eigen::Index e = group[idx];
-        for (int a = 0; a < nodes_; ++a) diagonal[static_cast<std::size_t>(elements(e, a))] += block(e, a, a);
-      }
+  for (const auto& runs : d_->run_colors()) {  // as add_product: runs of consecutive elements
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs.size(), 1), [&](const auto& range) {
+      for (std::size_t run = range.begin(); run != range.end(); ++run)
+        for (Eigen::Index e = runs[run].first; e != runs[run].end; ++e)
+          for (int a = 0; a < nodes_; ++a) diagonal[static_cast<std::size_t>(elements(e, a))] += block(e, a, a);
     });
   }
 }
