@@ -228,6 +228,14 @@ void CorotationalHexForm::element_values(const Eigen::VectorXd& x, std::vector<d
   });
 }
 
+// Unrotated displacements d_a = R^T x_a - X_a and rest-frame forces f = K_e d (Eq. 17 with R
+// fixed: dU/dx_a = R f_a, exactly the warped elastic force for psi = 1/2 eps : C : eps).
+CorotationalHexForm::ElementVector CorotationalHexForm::warped_gradient(const Mat3& R, const ElementVector& f) {
+  ElementVector g;
+  for (int a = 0; a < 8; ++a) g.segment<3>(3 * a).noalias() = R * f.segment<3>(3 * a);
+  return g;
+}
+
 Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eigen::VectorXd& x,
                                                          JacobianKind kind) const {
   return element_gradient(e, x, kind, element_rotation(e, x));
@@ -236,12 +244,9 @@ Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eige
 Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eigen::VectorXd& x, JacobianKind kind,
                                                          const ElementRotation& rotation) const {
   const Mat3& R = rotation.R;
-  // Unrotated displacements d_a = R^T x_a - X_a and rest-frame forces K_e d (Eq. 17 with R fixed:
-  // dU/dx_a = R (K_e d)_a, exactly the warped elastic force for psi = 1/2 eps : C : eps).
   const ElementVector disp = unrotated_displacements(e, x, R);
   const ElementVector f = K_[e] * disp;
-  Eigen::VectorXd g(24);
-  for (int a = 0; a < 8; ++a) g.segment<3>(3 * a).noalias() = R * f.segment<3>(3 * a);
+  Eigen::VectorXd g = warped_gradient(R, f);
   if (kind == JacobianKind::Warped) return g;
 
   // The rotation's own change (what Eq. 17 discards, Chao et al.): with F_tet = R S and
@@ -301,10 +306,13 @@ void CorotationalHexForm::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd
   const Discretization& d = *disc_;
   const auto& elements = d.mesh().elements;
   const auto rotations = all_rotations(x);
-  std::vector<Eigen::Matrix<double, 24, 1>> ge(static_cast<size_t>(d.num_elements()));
+  std::vector<ElementVector> ge(static_cast<size_t>(d.num_elements()));
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, d.num_elements(), 32), [&](const auto& range) {
-    for (Eigen::Index e = range.begin(); e < range.end(); ++e)
-      ge[static_cast<size_t>(e)] = element_gradient(e, x, JacobianKind::Warped, (*rotations)[static_cast<size_t>(e)]);
+    for (Eigen::Index e = range.begin(); e < range.end(); ++e) {
+      // Fixed-size throughout (element_gradient returns a heap vector per element).
+      const Mat3& R = (*rotations)[static_cast<size_t>(e)].R;
+      ge[static_cast<size_t>(e)] = warped_gradient(R, K_[e] * unrotated_displacements(e, x, R));
+    }
   });
   for (Eigen::Index e = 0; e < d.num_elements(); ++e)
     for (int a = 0; a < 8; ++a) g.segment<3>(3 * elements(e, a)) += ge[static_cast<size_t>(e)].segment<3>(3 * a);

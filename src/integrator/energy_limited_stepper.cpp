@@ -173,20 +173,39 @@ struct EnergyLimitedStepper::Factorization {
   std::vector<std::vector<int>> block_slots;
   std::vector<int> slots_outer, slots_inner;  // A's pattern the slots were found for
 
-  // Drops the slots when A's pattern is not the one they were found for (A compressed).
-  void check_pattern() {
-    const int* outer = A.outerIndexPtr();
-    const int* inner = A.innerIndexPtr();
-    const bool same = static_cast<Eigen::Index>(slots_outer.size()) == A.outerSize() + 1 &&
-                      static_cast<Eigen::Index>(slots_inner.size()) == A.nonZeros() &&
-                      std::equal(slots_outer.begin(), slots_outer.end(), outer) &&
-                      std::equal(slots_inner.begin(), slots_inner.end(), inner);
-    if (same) return;
-    slots_outer.assign(outer, outer + A.outerSize() + 1);
-    slots_inner.assign(inner, inner + A.nonZeros());
+  // A = scale K for the potential's Hessian K. When K's pattern is the one the slots were found
+  // for (the usual case: it is built once), only the values are written, scaled in the same
+  // pass; otherwise A takes K's pattern and the slots are dropped.
+  void set_scaled(const Eigen::SparseMatrix<double>& K, double scale) {
+    const bool same = K.isCompressed() && static_cast<Eigen::Index>(slots_outer.size()) == K.outerSize() + 1 &&
+                      static_cast<Eigen::Index>(slots_inner.size()) == K.nonZeros() &&
+                      A.outerSize() == K.outerSize() && A.nonZeros() == K.nonZeros() && A.isCompressed() &&
+                      std::equal(slots_outer.begin(), slots_outer.end(), K.outerIndexPtr()) &&
+                      std::equal(slots_inner.begin(), slots_inner.end(), K.innerIndexPtr());
+    if (same) {
+      Eigen::Map<Eigen::VectorXd>(A.valuePtr(), A.nonZeros()) =
+          Eigen::Map<const Eigen::VectorXd>(K.valuePtr(), K.nonZeros()) * scale;
+      return;
+    }
+    A = K;
+    A.makeCompressed();
+    A *= scale;
+    slots_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+    slots_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
     block_slots.clear();
     scatter_valid = false;
+    h_pattern_current = false;
   }
+  // H = A with A's values, in H's storage when it already has A's pattern.
+  void copy_a_into_h() {
+    if (h_pattern_current) {
+      std::copy(A.valuePtr(), A.valuePtr() + A.nonZeros(), H.valuePtr());
+      return;
+    }
+    H = A;
+    h_pattern_current = true;
+  }
+  bool h_pattern_current = false;  // H has A's pattern (set_scaled clears it when that changes)
   // Where A = h^2 K becomes M + h^2 K with the fixed DOFs' rows and columns replaced by identity
   // ones: the value positions to clear and, per DOF, its diagonal's position and what is added
   // there (its mass, or 1 on a fixed DOF). Valid for the pattern above and the fixed mask.
@@ -341,11 +360,8 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   // The potential's raw Hessian K and forces f = -grad E at x0; the prescribed velocities are
   // lifted to the right-hand side (b -= A v_fixed) before their rows and columns become identity.
   Eigen::SparseMatrix<double>& A = factor_->A;
-  A = *potential_->hessian(x0).matrix();
-  A.makeCompressed();
-  factor_->check_pattern();
+  factor_->set_scaled(*potential_->hessian(x0).matrix(), h * h);
   const Eigen::VectorXd f0 = -potential_->gradient(x0);
-  A *= h * h;
   Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * f0;
   if (v_fixed.squaredNorm() > 0.0) b -= A * v_fixed + mass_dofs_.cwiseProduct(v_fixed);
   // A = M + h^2 K in K's own storage: rows and columns of fixed DOFs become identity rows. The
@@ -446,7 +462,9 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
       for (const auto& [key, lambda_e] : warm) {
         if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
         const std::vector<int>& slots = factor_->slots(disc, key);
-        const Eigen::MatrixXd He = limited_->element_hessian(key, x_k) * (h * lambda_e / limit->max_energy);
+        // The element block scaled by h lambda_e / U_max as it is added.
+        const Eigen::MatrixXd He = limited_->element_hessian(key, x_k);
+        const double scale = h * lambda_e / limit->max_energy;
         bool any_fixed = false, any_free = false;
         for (int a = 0; a < disc.nodes(); ++a)
           for (int i = 0; i < 3; ++i) {
@@ -458,21 +476,14 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
         if (!stiffened) {
           // H = A: same pattern (A holds every element block), so A's values are copied into H's
           // storage, kept from earlier steps.
-          const bool same_pattern =
-              H.isCompressed() && H.outerSize() == A.outerSize() && H.nonZeros() == A.nonZeros() &&
-              std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, H.outerIndexPtr()) &&
-              std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), H.innerIndexPtr());
-          if (same_pattern)
-            std::copy(A.valuePtr(), A.valuePtr() + A.nonZeros(), H.valuePtr());
-          else
-            H = A;
+          factor_->copy_a_into_h();
           stiffened = true;
         }
         double* values = H.valuePtr();
         const double* he = He.data();  // column-major: entry (r, c) at c * dofs + r
         if (!any_fixed) {
           for (int c = 0; c < dofs; ++c)
-            for (int r = 0; r < dofs; ++r) values[slots[static_cast<size_t>(r * dofs + c)]] += he[c * dofs + r];
+            for (int r = 0; r < dofs; ++r) values[slots[static_cast<size_t>(r * dofs + c)]] += he[c * dofs + r] * scale;
           continue;
         }
         for (int a = 0; a < disc.nodes(); ++a)
@@ -481,7 +492,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
               for (int j = 0; j < 3; ++j) {
                 const Eigen::Index r = 3 * elements(key, a) + i, c = 3 * elements(key, o) + j;
                 if (fixed[r] || fixed[c]) continue;
-                values[slots[static_cast<size_t>((3 * a + i) * dofs + 3 * o + j)]] += He(3 * a + i, 3 * o + j);
+                values[slots[static_cast<size_t>((3 * a + i) * dofs + 3 * o + j)]] += He(3 * a + i, 3 * o + j) * scale;
               }
       }
     }

@@ -96,6 +96,8 @@ class CorotationalHexForm final : public ElementForm {
   ElementRotation element_rotation(Eigen::Index e, const Eigen::VectorXd& x) const;
   std::shared_ptr<const std::vector<ElementRotation>> all_rotations(const Eigen::VectorXd& x) const;
   double element_value(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const;
+  // R f_a over the element's nodes (the warped force from the rest-frame one).
+  static ElementVector warped_gradient(const Mat3& R, const ElementVector& f);
   // d_a = R^T x_a - X_a over the element's nodes.
   ElementVector unrotated_displacements(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const;
   Eigen::VectorXd element_gradient(Eigen::Index e, const Eigen::VectorXd& x, JacobianKind kind,
