@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <map>
 
 #include "sinew/core/error.hpp"
@@ -195,6 +196,7 @@ struct EnergyLimitedStepper::Factorization {
     block_slots.clear();
     scatter_valid = false;
     h_pattern_current = false;
+    ++pattern;
   }
   // H = A with A's values, in H's storage when it already has A's pattern.
   void copy_a_into_h() {
@@ -206,6 +208,9 @@ struct EnergyLimitedStepper::Factorization {
     h_pattern_current = true;
   }
   bool h_pattern_current = false;  // H has A's pattern (set_scaled clears it when that changes)
+  // The id of A's pattern (and H's, which is A's) for the factorisations, so that they need not
+  // compare the patterns of every matrix they are given; set_scaled changes it with the pattern.
+  std::uint64_t pattern = 0;
   // Where A = h^2 K becomes M + h^2 K with the fixed DOFs' rows and columns replaced by identity
   // ones: the value positions to clear and, per DOF, its diagonal's position and what is added
   // there (its mass, or 1 on a fixed DOF). Valid for the pattern above and the fixed mask.
@@ -394,7 +399,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     if (&slot == &factor_->lagrangian && slot.refresh_cost() > 0.0 && slot.refresh_cost() < reuse.exact_lagrangian_below)
       r.enabled = false;
     keep_factor = r.enabled;
-    F->use(M, r, counters);
+    F->use(M, r, counters, factor_->pattern);
   };
   auto solve = [&](const Eigen::VectorXd& r, Eigen::VectorXd& out, bool guess) { F->solve(r, out, guess, counters); };
   use(A, factor_->backward_euler);

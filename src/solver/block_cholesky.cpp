@@ -24,6 +24,7 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& M) {
   if (M.rows() % 3 != 0 || M.rows() != M.cols() || !M.isCompressed())
     throw Error("needs a compressed square matrix with 3 DOFs per vertex", "block Cholesky");
   vertices_ = static_cast<int>(M.rows() / 3);
+  pattern_id_ = 0;  // factorize() sets the caller's id of this pattern
   const int nv = vertices_;
   // The vertex graph and its fill-reducing ordering (as Eigen's simplicial factor: P = Pinv^-1).
   std::vector<Eigen::Triplet<double>> couplings;
@@ -105,8 +106,11 @@ bool BlockCholesky::same_pattern(const Eigen::SparseMatrix<double>& M) const {
          std::equal(pattern_inner_.begin(), pattern_inner_.end(), M.innerIndexPtr());
 }
 
-bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& M) {
-  if (!same_pattern(M)) analyze(M);
+bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& M, std::uint64_t pattern) {
+  if (pattern == 0 || pattern != pattern_id_) {
+    if (!same_pattern(M)) analyze(M);
+    pattern_id_ = pattern;
+  }
   std::fill(blocks_.begin(), blocks_.end(), 0.0);
   double* L = blocks_.data();
   const double* values = M.valuePtr();
