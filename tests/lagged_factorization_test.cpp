@@ -205,6 +205,9 @@ TEST(LaggedFactorization, PatternIdsSkipOnlyTheComparisonsOfPatternsAlreadySeen)
   F.use(A1, reuse, c, 1);
   F.solve(b, x, false, c);
   EXPECT_LT((A1 * x - b).norm(), 1e-12 * b.norm());
+  F.use(A1, reuse, c, 1);  // lagged now: CG's product takes A1's pattern (no iteration from x)
+  F.solve(b, x, true, c);
+  EXPECT_EQ(c.cg_iterations, 0);
   F.use(A2, reuse, c, 2);
   EXPECT_FALSE(F.exact());  // lagged: CG with A2's products
   F.solve(b, x, false, c);
