@@ -271,8 +271,8 @@ Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eige
 }
 
 Eigen::MatrixXd CorotationalHexForm::element_hessian(Eigen::Index e, const Eigen::VectorXd& x) const {
-  // The blocks on and above the diagonal, mirrored below it (K_e is symmetric; so is H then,
-  // exactly, and its blocks are those add_hessian assembles).
+  // The blocks on and above the diagonal, mirrored below it (K_e is symmetric): the blocks
+  // add_hessian assembles.
   double rotated[9 * kNodePairs];
   rotated_pair_blocks(e, element_rotation(e, x).R, rotated);
   Eigen::MatrixXd H(24, 24);
@@ -282,7 +282,7 @@ Eigen::MatrixXd CorotationalHexForm::element_hessian(Eigen::Index e, const Eigen
       for (int j = 0; j < 3; ++j) {
         const double v = rotated[kNodePairs * (3 * i + j) + p];
         H(3 * a + i, 3 * b + j) = v;
-        H(3 * b + j, 3 * a + i) = v;
+        if (a != b) H(3 * b + j, 3 * a + i) = v;
       }
   }
   return H;

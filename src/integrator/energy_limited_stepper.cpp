@@ -7,6 +7,7 @@
 #include <map>
 
 #include "sinew/core/error.hpp"
+#include "sinew/forms/corotational_hex_form.hpp"
 #include "sinew/forms/external_force_form.hpp"
 #include "sinew/solver/lagged_factorization.hpp"
 #include "sinew/solver/serial_openmp.hpp"
@@ -464,16 +465,18 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     bool stiffened = false;
     if (limit) {
       const int dofs = 3 * disc.nodes();
+      // Corotational blocks come straight from the form's kernel for node pairs, without the
+      // 24 x 24 matrix element_hessian builds from them (the same values).
+      const auto* corotational = dynamic_cast<const CorotationalHexForm*>(limited_.get());
+      std::vector<char> local_fixed(static_cast<size_t>(dofs));
       for (const auto& [key, lambda_e] : warm) {
         if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
         const std::vector<int>& slots = factor_->slots(disc, key);
-        // The element block scaled by h lambda_e / U_max as it is added.
-        const Eigen::MatrixXd He = limited_->element_hessian(key, x_k);
-        const double scale = h * lambda_e / limit->max_energy;
         bool any_fixed = false, any_free = false;
         for (int a = 0; a < disc.nodes(); ++a)
           for (int i = 0; i < 3; ++i) {
             const bool f = fixed[static_cast<size_t>(3 * elements(key, a) + i)] != 0;
+            local_fixed[static_cast<size_t>(3 * a + i)] = f ? 1 : 0;
             any_fixed = any_fixed || f;
             any_free = any_free || !f;
           }
@@ -484,21 +487,32 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
           factor_->copy_a_into_h();
           stiffened = true;
         }
+        // Entry (r, c) of the element block (element DOFs), scaled by h lambda_e / U_max as it is
+        // added, where neither DOF is fixed.
         double* values = H.valuePtr();
-        const double* he = He.data();  // column-major: entry (r, c) at c * dofs + r
-        if (!any_fixed) {
-          for (int c = 0; c < dofs; ++c)
-            for (int r = 0; r < dofs; ++r) values[slots[static_cast<size_t>(r * dofs + c)]] += he[c * dofs + r] * scale;
-          continue;
-        }
-        for (int a = 0; a < disc.nodes(); ++a)
-          for (int o = 0; o < disc.nodes(); ++o)
+        const double scale = h * lambda_e / limit->max_energy;
+        auto add = [&](int r, int c, double value) {
+          if (any_fixed && (local_fixed[static_cast<size_t>(r)] || local_fixed[static_cast<size_t>(c)])) return;
+          values[slots[static_cast<size_t>(r * dofs + c)]] += value * scale;
+        };
+        if (corotational) {
+          constexpr int pairs = CorotationalHexForm::kNodePairs;
+          double rotated[9 * pairs];
+          corotational->rotated_pair_blocks(key, corotational->rotation(key, x_k), rotated);
+          for (int p = 0; p < pairs; ++p) {
+            const auto [a, o] = CorotationalHexForm::pair_nodes()[static_cast<size_t>(p)];
             for (int i = 0; i < 3; ++i)
               for (int j = 0; j < 3; ++j) {
-                const Eigen::Index r = 3 * elements(key, a) + i, c = 3 * elements(key, o) + j;
-                if (fixed[r] || fixed[c]) continue;
-                values[slots[static_cast<size_t>((3 * a + i) * dofs + 3 * o + j)]] += He(3 * a + i, 3 * o + j) * scale;
+                const double value = rotated[pairs * (3 * i + j) + p];
+                add(3 * a + i, 3 * o + j, value);
+                if (a != o) add(3 * o + j, 3 * a + i, value);
               }
+          }
+          continue;
+        }
+        const Eigen::MatrixXd He = limited_->element_hessian(key, x_k);
+        for (int c = 0; c < dofs; ++c)
+          for (int r = 0; r < dofs; ++r) add(r, c, He(r, c));
       }
     }
     if (stiffened) {
