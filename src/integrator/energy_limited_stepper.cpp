@@ -42,6 +42,31 @@ double row_dot(const Row& r, const Eigen::VectorXd& v) {
   return s;
 }
 
+// The matrix whose row i is rows(i) (a sparse row as (dof, value) pairs), filled in order with
+// each row's entries sorted by DOF and repeated DOFs summed in the order given, as
+// setFromTriplets would, but without its triplet list and transposed copy.
+template <class RowOf>
+void set_rows(Eigen::SparseMatrix<double, Eigen::RowMajor>& J, Eigen::Index m, Eigen::Index n, const RowOf& rows) {
+  Eigen::Index nnz = 0;
+  for (Eigen::Index i = 0; i < m; ++i) nnz += static_cast<Eigen::Index>(rows(i).size());
+  J.resize(m, n);
+  J.reserve(nnz);
+  std::vector<std::pair<Eigen::Index, double>> sorted;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    J.startVec(i);
+    const auto& row = rows(i);
+    sorted.assign(row.begin(), row.end());
+    std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t k = 0; k < sorted.size(); ++k) {
+      if (k > 0 && sorted[k].first == sorted[k - 1].first)
+        J.valuePtr()[J.nonZeros() - 1] += sorted[k].second;
+      else
+        J.insertBack(i, sorted[k].first) = sorted[k].second;
+    }
+  }
+  J.finalize();
+}
+
 // Two unit tangents orthogonal to n.
 std::pair<Vec3, Vec3> tangents(const Vec3& n) {
   const Vec3 a = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
@@ -526,16 +551,14 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
     Eigen::VectorXd offset(m), lambda(m);
     std::vector<LcpRow> bounds(m);
-    std::vector<Eigen::Triplet<double>> entries;
     for (Eigen::Index i = 0; i < m; ++i) {
-      for (const auto& [dof, value] : rows[i].jacobian) entries.emplace_back(i, dof, value);
       offset(i) = rows[i].offset;
       bounds[i] = rows[i].bounds;
       const auto w = warm.find(rows[i].key);
       lambda(i) = w == warm.end() ? 0.0 : w->second;
     }
-    Eigen::SparseMatrix<double, Eigen::RowMajor> J(m, n);
-    J.setFromTriplets(entries.begin(), entries.end());
+    Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+    set_rows(J, m, n, [&](Eigen::Index i) -> const auto& { return rows[static_cast<size_t>(i)].jacobian; });
     // W~ = J~ P^-1 J~^T from the factorisation at hand. Columns P^-1 J_i^T are cached per
     // constraint with the Jacobian J~_i they were computed for and reused while J_i stays close
     // (contact rows against a fixed normal do not change at all); new ones come from one
@@ -581,15 +604,10 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
         for (std::size_t c = 0; c < missing.size(); ++c)
           F->columns()[rows[missing[c]].key] = {rows[missing[c]].jacobian, cols.col(static_cast<Eigen::Index>(c))};
       }
-      std::vector<Eigen::Triplet<double>> cached;
       Y.resize(n, m);
-      for (Eigen::Index i = 0; i < m; ++i) {
-        const LaggedFactorization::Column& col = F->columns().at(rows[i].key);
-        for (const auto& [dof, value] : col.jacobian) cached.emplace_back(i, dof, value);
-        Y.col(i) = col.values;
-      }
-      Eigen::SparseMatrix<double, Eigen::RowMajor> Jc(m, n);
-      Jc.setFromTriplets(cached.begin(), cached.end());
+      for (Eigen::Index i = 0; i < m; ++i) Y.col(i) = F->columns().at(rows[i].key).values;
+      Eigen::SparseMatrix<double, Eigen::RowMajor> Jc;
+      set_rows(Jc, m, n, [&](Eigen::Index i) -> const auto& { return F->columns().at(rows[i].key).jacobian; });
       W = Jc * Y;  // sparse-times-dense: O(nnz(J) m)
       for (Eigen::Index i = 0; i < m; ++i) W(i, i) = std::max(W(i, i), 1e-14 * W.diagonal().cwiseAbs().maxCoeff());
       // Bound the cache (n doubles per column) on large meshes.
