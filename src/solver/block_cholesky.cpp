@@ -168,6 +168,7 @@ Eigen::MatrixXd BlockCholesky::gram(const Eigen::SparseMatrix<double, Eigen::Row
   const Eigen::Index m = J.rows();
   // Z padded like the kernels' vectors: its padding rows stay zero and add nothing to Z^T Z.
   Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(4 * vertices_, m);
+  int first_of_all = vertices_;  // Z's rows above this vertex are zero in every column
   for (Eigen::Index i = 0; i < m; ++i) {
     int first = vertices_;
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, i); it; ++it) {
@@ -177,9 +178,11 @@ Eigen::MatrixXd BlockCholesky::gram(const Eigen::SparseMatrix<double, Eigen::Row
     }
     block_kernels::forward(vertices_, start_.data(), rows_.data(), blocks_.data(), diagonal_inverse_.data(),
                            Z.col(i).data(), first);
+    first_of_all = std::min(first_of_all, first);
   }
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(m, m);
-  W.selfadjointView<Eigen::Lower>().rankUpdate(Z.transpose());
+  // The rows every column has zero add nothing to Z^T Z: left out of the product.
+  W.selfadjointView<Eigen::Lower>().rankUpdate(Z.bottomRows(4 * (vertices_ - first_of_all)).transpose());
   return W.selfadjointView<Eigen::Lower>();
 }
 
