@@ -14,6 +14,24 @@
 namespace sinew {
 namespace {
 
+// K u for an element stiffness, column by column into a sum the compiler keeps in registers:
+// the same sums, in the same order, as Eigen's matrix-vector kernel for K * u, at ~2/3 of its
+// time on these 24 x 24 products.
+CorotationalHexForm::ElementVector stiffness_times(const CorotationalHexForm::ElementMatrix& K,
+                                                  const CorotationalHexForm::ElementVector& u) {
+  CorotationalHexForm::ElementVector y;
+  const double* k = K.data();
+  double* ys = y.data();
+  for (int i = 0; i < 24; ++i) ys[i] = k[i] * u(0);
+  for (int c = 1; c < 24; ++c) {
+    const double uc = u(c);
+    const double* column = k + 24 * c;
+#pragma GCC unroll 24
+    for (int i = 0; i < 24; ++i) ys[i] += column[i] * uc;
+  }
+  return y;
+}
+
 Mat3 tet_edges(const Eigen::Matrix3Xd& xe) {
   Mat3 D;
   for (int k = 0; k < 3; ++k) D.col(k) = xe.col(kInnermostTet[k + 1]) - xe.col(kInnermostTet[0]);
@@ -226,7 +244,7 @@ double CorotationalHexForm::element_value(Eigen::Index e, const Eigen::VectorXd&
   ElementVector u = unrotated_displacements(e, x, R);
   const Vec3 mean = u.reshaped(3, 8).rowwise().mean();
   u.reshaped(3, 8).colwise() -= mean;
-  return 0.5 * u.dot(K_[e] * u);
+  return 0.5 * u.dot(stiffness_times(K_[e], u));
 }
 
 void CorotationalHexForm::element_values(const Eigen::VectorXd& x, std::vector<double>& energies) const {
@@ -255,7 +273,7 @@ Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eige
                                                          const ElementRotation& rotation) const {
   const Mat3& R = rotation.R;
   const ElementVector disp = unrotated_displacements(e, x, R);
-  const ElementVector f = K_[e] * disp;
+  const ElementVector f = stiffness_times(K_[e], disp);
   Eigen::VectorXd g = warped_gradient(R, f);
   if (kind == JacobianKind::Warped) return g;
 
@@ -321,7 +339,7 @@ void CorotationalHexForm::add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd
     for (Eigen::Index e = range.begin(); e < range.end(); ++e) {
       // Fixed-size throughout (element_gradient returns a heap vector per element).
       const Mat3& R = (*rotations)[static_cast<size_t>(e)].R;
-      ge[static_cast<size_t>(e)] = warped_gradient(R, K_[e] * unrotated_displacements(e, x, R));
+      ge[static_cast<size_t>(e)] = warped_gradient(R, stiffness_times(K_[e], unrotated_displacements(e, x, R)));
     }
   });
   for (Eigen::Index e = 0; e < d.num_elements(); ++e)
