@@ -57,11 +57,11 @@ void set_rows(Eigen::SparseMatrix<double, Eigen::RowMajor>& J, Eigen::Index m, E
     const auto& row = rows(i);
     sorted.assign(row.begin(), row.end());
     std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (std::size_t k = 0; k < sorted.size(); ++k) {
-      if (k > 0 && sorted[k].first == sorted[k - 1].first)
-        J.valuePtr()[J.nonZeros() - 1] += sorted[k].second;
-      else
-        J.insertBack(i, sorted[k].first) = sorted[k].second;
+    for (std::size_t k = 0; k < sorted.size();) {
+      const Eigen::Index dof = sorted[k].first;
+      double value = sorted[k].second;
+      for (++k; k < sorted.size() && sorted[k].first == dof; ++k) value += sorted[k].second;
+      J.insertBack(i, dof) = value;
     }
   }
   J.finalize();
