@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <tuple>
 
 #include <fmt/format.h>
 
 #include "sinew/forms/corotational_hex_form.hpp"
+#include "sinew/forms/external_force_form.hpp"
 #include "experiments/paper001_experiments.hpp"
 #include "sinew/element/mass.hpp"
 #include "sinew/mesh/lattice.hpp"
@@ -162,6 +164,140 @@ TEST(EnergyLimitedStepper, FallingSphereRestsOnFrictionalGround) {
 }
 
 }  // namespace
+// A form without energy that couples two vertices: it adds blocks to the Hessian's pattern
+// and nothing to its values.
+class ZeroCouplingForm final : public Form {
+ public:
+  ZeroCouplingForm(int a, int b) : a_(a), b_(b) {}
+  std::string name() const override { return "zero-coupling"; }
+  double value(const Eigen::VectorXd&) const override { return 0.0; }
+  void add_gradient(const Eigen::VectorXd&, Eigen::VectorXd&) const override {}
+  void add_hessian(const Eigen::VectorXd&, BlockHessian&) const override {}
+  void couplings(std::vector<std::vector<int>>& cliques) const override { cliques.push_back({a_, b_}); }
+
+ private:
+  int a_, b_;
+};
+
+TEST(EnergyLimitedStepper, StepsAfterTheHessianPatternChangesMatchAStepperBuiltWithIt) {
+  // The stepper keeps the step matrix's storage, the element slots of the Lagrangian Hessian and
+  // its pattern from step to step: when the potential's Hessian pattern changes (a form with new
+  // couplings added between steps), it must take the new one. A cantilever with active energy
+  // limits (from the sixth step on), the pattern widened after 7 steps, against a stepper that had
+  // the coupling throughout.
+  const VolumeMesh mesh = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.2, 0.2), Eigen::Vector3i(4, 1, 1));
+  auto model = std::make_shared<CorotationalHexForm>(std::make_shared<Discretization>(mesh),
+                                                 HookeCoefficients::from_young_poisson(1e5, 0.3));
+  const Eigen::VectorXd masses = lumped_mass(model->discretization(), 100.0);
+  const Eigen::Index n = 3 * mesh.num_vertices();
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+  std::vector<char> fixed(static_cast<size_t>(n), 0);
+  int wall = -1, tip = -1;
+  for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v) {
+    f(3 * v + 2) = -9.81 * masses(v);
+    if (mesh.vertices(v, 0) < 1e-9) fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = 1;
+    if (mesh.vertices(v, 0) < 1e-9 && wall < 0) wall = static_cast<int>(v);
+    if (mesh.vertices(v, 0) > 1.0 - 1e-9) tip = static_cast<int>(v);
+  }
+  EnergyLimitedStepSettings s;
+  s.energy_limit = EnergyLimit{0.05};
+  auto run = [&](bool coupled_from_start) {
+    auto potential = std::make_shared<Problem>(mesh.num_vertices());
+    potential->add_form(model);
+    potential->add_form(std::make_shared<ExternalForceForm>(f));
+    if (coupled_from_start) potential->add_form(std::make_shared<ZeroCouplingForm>(wall, tip));
+    EnergyLimitedStepper stepper(potential, model, masses, {}, s);
+    Eigen::VectorXd x = mesh.rest_positions(), v = Eigen::VectorXd::Zero(n);
+    int active_after_change = 0;
+    for (int k = 0; k < 10; ++k) {
+      if (k == 7 && !coupled_from_start) potential->add_form(std::make_shared<ZeroCouplingForm>(wall, tip));
+      const Eigen::VectorXd x_end = x;
+      const EnergyLimitedStepReport r = stepper.step(x, v, fixed, x_end);
+      EXPECT_TRUE(r.converged);
+      if (k >= 7) active_after_change += r.active_energy;
+    }
+    return std::make_tuple(x, v, active_after_change);
+  };
+  const auto [x_changed, v_changed, active_changed] = run(false);
+  const auto [x_coupled, v_coupled, active_coupled] = run(true);
+  EXPECT_GT(active_changed, 0);  // the Lagrangian Hessian was built after the change
+  EXPECT_EQ(active_changed, active_coupled);
+  EXPECT_LE((x_changed - x_coupled).norm(), 1e-8 * x_coupled.norm());
+  EXPECT_LE((v_changed - v_coupled).norm(), 1e-5 * v_coupled.norm());
+}
+
+// The corotational form seen only as an ElementForm (the stepper's generic path for element
+// Hessians).
+class GenericElementForm final : public ElementForm {
+ public:
+  explicit GenericElementForm(std::shared_ptr<const CorotationalHexForm> form) : form_(std::move(form)) {}
+  std::string name() const override { return "generic"; }
+  const Discretization& discretization() const override { return form_->discretization(); }
+  double element_value(Eigen::Index e, const Eigen::VectorXd& x) const override { return form_->element_value(e, x); }
+  void element_values(const Eigen::VectorXd& x, std::vector<double>& energies) const override {
+    form_->element_values(x, energies);
+  }
+  Eigen::VectorXd element_gradient(Eigen::Index e, const Eigen::VectorXd& x, JacobianKind kind) const override {
+    return form_->element_gradient(e, x, kind);
+  }
+  bool supports(JacobianKind kind) const override { return form_->supports(kind); }
+  Eigen::MatrixXd element_hessian(Eigen::Index e, const Eigen::VectorXd& x) const override {
+    return form_->element_hessian(e, x);
+  }
+  double value(const Eigen::VectorXd& x) const override { return form_->value(x); }
+  void add_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& g) const override { form_->add_gradient(x, g); }
+  void add_hessian(const Eigen::VectorXd& x, BlockHessian& H) const override { form_->add_hessian(x, H); }
+
+ private:
+  std::shared_ptr<const CorotationalHexForm> form_;
+};
+
+TEST(EnergyLimitedStepper, CorotationalLagrangianBlocksAreTheElementHessiansBitForBit) {
+  // The stepper adds a corotational element's Lagrangian Hessian block from the form's node-pair
+  // kernel; through the generic ElementForm path (element_hessian) the motion must be the same
+  // bit for bit. A cantilever with active limits, also on the elements at the fixed wall.
+  const VolumeMesh mesh = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.2, 0.2), Eigen::Vector3i(4, 1, 1));
+  const auto disc = std::make_shared<Discretization>(mesh);
+  const HookeCoefficients hooke = HookeCoefficients::from_young_poisson(1e5, 0.3);
+  const Eigen::VectorXd masses = lumped_mass(*disc, 100.0);
+  const Eigen::Index n = 3 * mesh.num_vertices();
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+  std::vector<char> fixed(static_cast<size_t>(n), 0);
+  for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v) {
+    f(3 * v + 2) = -9.81 * masses(v);
+    if (mesh.vertices(v, 0) < 1e-9) fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = 1;
+  }
+  EnergyLimitedStepSettings s;
+  s.energy_limit = EnergyLimit{0.02};
+  auto run = [&](bool generic) {
+    // A model of its own: its rotation cache warm-starts the polar decompositions.
+    auto own = std::make_shared<CorotationalHexForm>(disc, hooke);
+    std::shared_ptr<const ElementForm> limited = own;
+    if (generic) limited = std::make_shared<GenericElementForm>(own);
+    auto potential = std::make_shared<Problem>(mesh.num_vertices());
+    potential->add_form(own);
+    potential->add_form(std::make_shared<ExternalForceForm>(f));
+    EnergyLimitedStepper stepper(potential, limited, masses, {}, s);
+    Eigen::VectorXd x = mesh.rest_positions(), v = Eigen::VectorXd::Zero(n);
+    int sqp = 0;
+    std::set<long> active;
+    for (int k = 0; k < 12; ++k) {
+      const Eigen::VectorXd x_end = x;
+      sqp += stepper.step(x, v, fixed, x_end).sqp_iterations;
+      for (const auto& [key, lambda] : stepper.multipliers())
+        if (lambda > 0.0) active.insert(key);
+    }
+    return std::make_tuple(x, v, sqp, active);
+  };
+  const auto [x_kernel, v_kernel, sqp_kernel, active_kernel] = run(false);
+  const auto [x_generic, v_generic, sqp_generic, active_generic] = run(true);
+  EXPECT_EQ(active_kernel.count(0), 1u);  // the element at the wall was limited
+  EXPECT_GE(active_kernel.size(), 2u);
+  EXPECT_EQ(sqp_kernel, sqp_generic);
+  EXPECT_TRUE(x_kernel == x_generic);
+  EXPECT_TRUE(v_kernel == v_generic);
+}
+
 TEST(EnergyLimitedStepper, FactorizationReuseMatchesFreshFactorizations) {
   // Reusing a lagged factorisation (CG preconditioner + LCP splitting) must land on the same
   // motion as factorising every matrix, up to the solver tolerances, with far fewer

@@ -2,6 +2,8 @@
 // CG), the rent-or-buy refresh and the fallback when CG needs too long.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "sinew/solver/lagged_factorization.hpp"
 
 namespace sinew {
@@ -165,6 +167,59 @@ TEST(LaggedFactorization, SmallMatricesGetEigensSimplicialFactorWithCholmodsAnsw
   EXPECT_GT(cs.cg_iterations, 1);
   EXPECT_LT((A2 * xs - b).norm(), 1e-11 * b.norm());
   EXPECT_LT((xs - xc).norm(), 1e-10 * xc.norm());
+}
+
+// T (x) B for the 1D Laplacian plus mass T over `vertices` vertices and B = I + 0.1 ones: full 3x3
+// vertex blocks, SPD; plus `coupling` between DOFs 0 and 7 where it is not 0 (a pattern whose
+// vertex columns no longer share their rows).
+Eigen::SparseMatrix<double> block_matrix(int vertices, double mass, double coupling) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int a = 0; a < vertices; ++a)
+    for (int b = std::max(a - 1, 0); b <= std::min(a + 1, vertices - 1); ++b) {
+      const double tab = a == b ? mass + 2.0 : -1.0;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) t.emplace_back(3 * a + i, 3 * b + j, tab * ((i == j ? 1.0 : 0.0) + 0.1));
+    }
+  if (coupling != 0.0) {
+    t.emplace_back(0, 7, coupling);
+    t.emplace_back(7, 0, coupling);
+  }
+  Eigen::SparseMatrix<double> A(3 * vertices, 3 * vertices);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+TEST(LaggedFactorization, PatternIdsSkipOnlyTheComparisonsOfPatternsAlreadySeen) {
+  // Under the id of a pattern already seen, CG's product and the block factorisation take the
+  // matrix's pattern as known; a new id makes them look at the new pattern: the lagged solves
+  // with it, then its own factorisation, are still exact.
+  const Eigen::SparseMatrix<double> A1 = block_matrix(30, 1.0, 0.0), A2 = block_matrix(30, 1.2, 0.05);
+  ASSERT_NE(A1.nonZeros(), A2.nonZeros());
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A1.rows(), -1.0, 2.0);
+  FactorizationReuse reuse;
+  reuse.cg_tolerance = 1e-12;
+  reuse.max_cg_iterations = 100;
+  LaggedFactorization F;
+  LaggedFactorization::Counters c;
+  Eigen::VectorXd x;
+  F.use(A1, reuse, c, 1);
+  F.solve(b, x, false, c);
+  EXPECT_LT((A1 * x - b).norm(), 1e-12 * b.norm());
+  F.use(A1, reuse, c, 1);  // lagged now: CG's product takes A1's pattern (no iteration from x)
+  F.solve(b, x, true, c);
+  EXPECT_EQ(c.cg_iterations, 0);
+  F.use(A2, reuse, c, 2);
+  EXPECT_FALSE(F.exact());  // lagged: CG with A2's products
+  F.solve(b, x, false, c);
+  EXPECT_LT((A2 * x - b).norm(), 1e-11 * b.norm());
+  const Eigen::VectorXd b2 = Eigen::VectorXd::LinSpaced(A1.rows(), 3.0, -1.0);
+  F.solve(b2, x, false, c);  // the same id: the pattern taken as known
+  EXPECT_LT((A2 * x - b2).norm(), 1e-11 * b2.norm());
+  F.refactor(c);  // A2's own factorisation
+  EXPECT_TRUE(F.exact());
+  F.solve(b, x, false, c);
+  EXPECT_LT((A2 * x - b).norm(), 1e-12 * b.norm());
+  EXPECT_EQ(c.factorizations, 2);
 }
 
 TEST(LaggedFactorization, GramMatrixMatchesTheColumnsOfEitherFactor) {

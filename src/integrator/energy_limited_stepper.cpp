@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <map>
 
 #include "sinew/core/error.hpp"
+#include "sinew/forms/corotational_hex_form.hpp"
 #include "sinew/forms/external_force_form.hpp"
 #include "sinew/solver/lagged_factorization.hpp"
 #include "sinew/solver/serial_openmp.hpp"
@@ -38,6 +40,31 @@ double row_dot(const Row& r, const Eigen::VectorXd& v) {
   double s = 0.0;
   for (const auto& [dof, value] : r.jacobian) s += value * v(dof);
   return s;
+}
+
+// The matrix whose row i is rows(i) (a sparse row as (dof, value) pairs), filled in order with
+// each row's entries sorted by DOF and repeated DOFs summed in the order given, as
+// setFromTriplets would, but without its triplet list and transposed copy.
+template <class RowOf>
+void set_rows(Eigen::SparseMatrix<double, Eigen::RowMajor>& J, Eigen::Index m, Eigen::Index n, const RowOf& rows) {
+  Eigen::Index nnz = 0;
+  for (Eigen::Index i = 0; i < m; ++i) nnz += static_cast<Eigen::Index>(rows(i).size());
+  J.resize(m, n);
+  J.reserve(nnz);
+  std::vector<std::pair<Eigen::Index, double>> sorted;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    J.startVec(i);
+    const auto& row = rows(i);
+    sorted.assign(row.begin(), row.end());
+    std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t k = 0; k < sorted.size();) {
+      const Eigen::Index dof = sorted[k].first;
+      double value = sorted[k].second;
+      for (++k; k < sorted.size() && sorted[k].first == dof; ++k) value += sorted[k].second;
+      J.insertBack(i, dof) = value;
+    }
+  }
+  J.finalize();
 }
 
 // Two unit tangents orthogonal to n.
@@ -173,20 +200,84 @@ struct EnergyLimitedStepper::Factorization {
   std::vector<std::vector<int>> block_slots;
   std::vector<int> slots_outer, slots_inner;  // A's pattern the slots were found for
 
-  // Drops the slots when A's pattern is not the one they were found for (A compressed).
-  void check_pattern() {
-    const int* outer = A.outerIndexPtr();
-    const int* inner = A.innerIndexPtr();
-    const bool same = static_cast<Eigen::Index>(slots_outer.size()) == A.outerSize() + 1 &&
-                      static_cast<Eigen::Index>(slots_inner.size()) == A.nonZeros() &&
-                      std::equal(slots_outer.begin(), slots_outer.end(), outer) &&
-                      std::equal(slots_inner.begin(), slots_inner.end(), inner);
-    if (same) return;
-    slots_outer.assign(outer, outer + A.outerSize() + 1);
-    slots_inner.assign(inner, inner + A.nonZeros());
+  // A = scale K for the potential's Hessian K. When K's pattern is the one the slots were found
+  // for (the usual case: it is built once), only the values are written, scaled in the same
+  // pass; otherwise A takes K's pattern and the slots are dropped.
+  void set_scaled(const Eigen::SparseMatrix<double>& K, double scale) {
+    const bool same = K.isCompressed() && static_cast<Eigen::Index>(slots_outer.size()) == K.outerSize() + 1 &&
+                      static_cast<Eigen::Index>(slots_inner.size()) == K.nonZeros() &&
+                      A.outerSize() == K.outerSize() && A.nonZeros() == K.nonZeros() && A.isCompressed() &&
+                      std::equal(slots_outer.begin(), slots_outer.end(), K.outerIndexPtr()) &&
+                      std::equal(slots_inner.begin(), slots_inner.end(), K.innerIndexPtr());
+    if (same) {
+      Eigen::Map<Eigen::VectorXd>(A.valuePtr(), A.nonZeros()) =
+          Eigen::Map<const Eigen::VectorXd>(K.valuePtr(), K.nonZeros()) * scale;
+      return;
+    }
+    A = K;
+    A.makeCompressed();
+    A *= scale;
+    slots_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+    slots_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+    triple_columns.assign(static_cast<size_t>(A.outerSize()), 0);
+    for (Eigen::Index c = 0; c + 2 < A.outerSize(); c += 3) {
+      const int* outer = A.outerIndexPtr();
+      const int* inner = A.innerIndexPtr();
+      const int length = outer[c + 1] - outer[c];
+      triple_columns[static_cast<size_t>(c)] =
+          outer[c + 2] - outer[c + 1] == length && outer[c + 3] - outer[c + 2] == length &&
+          std::equal(inner + outer[c], inner + outer[c + 1], inner + outer[c + 1]) &&
+          std::equal(inner + outer[c], inner + outer[c + 1], inner + outer[c + 2]);
+    }
     block_slots.clear();
     scatter_valid = false;
+    h_pattern_current = false;
+    ++pattern;
   }
+  // H = A with A's values, in H's storage when it already has A's pattern.
+  void copy_a_into_h() {
+    if (h_pattern_current) {
+      std::copy(A.valuePtr(), A.valuePtr() + A.nonZeros(), H.valuePtr());
+      return;
+    }
+    H = A;
+    h_pattern_current = true;
+  }
+  bool h_pattern_current = false;  // H has A's pattern (set_scaled clears it when that changes)
+  // Per column of A: 1 where it starts a vertex's three columns with the same rows.
+  std::vector<char> triple_columns;
+  // y = A x, the same sums as Eigen's A * x (column by column, each added to y's rows in column
+  // order), with a vertex's three columns in one pass over their common rows: y's entries are
+  // read and written once per vertex instead of once per column.
+  void multiply_a(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+    const int* outer = A.outerIndexPtr();
+    const int* inner = A.innerIndexPtr();
+    const double* values = A.valuePtr();
+    y.setZero(A.rows());
+    double* ys = y.data();
+    for (Eigen::Index c = 0; c < A.outerSize();) {
+      if (triple_columns[static_cast<size_t>(c)]) {
+        const double x0 = x(c), x1 = x(c + 1), x2 = x(c + 2);
+        const int begin = outer[c], length = outer[c + 1] - begin;
+        const double* v0 = values + begin;
+        const double* v1 = values + outer[c + 1];
+        const double* v2 = values + outer[c + 2];
+        const int* rows = inner + begin;
+        for (int k = 0; k < length; ++k) {
+          double& yr = ys[rows[k]];
+          yr = ((yr + v0[k] * x0) + v1[k] * x1) + v2[k] * x2;
+        }
+        c += 3;
+        continue;
+      }
+      const double xc = x(c);
+      for (int k = outer[c]; k < outer[c + 1]; ++k) ys[inner[k]] += values[k] * xc;
+      ++c;
+    }
+  }
+  // The id of A's pattern (and H's, which is A's) for the factorisations, so that they need not
+  // compare the patterns of every matrix they are given; set_scaled changes it with the pattern.
+  std::uint64_t pattern = 0;
   // Where A = h^2 K becomes M + h^2 K with the fixed DOFs' rows and columns replaced by identity
   // ones: the value positions to clear and, per DOF, its diagonal's position and what is added
   // there (its mass, or 1 on a fixed DOF). Valid for the pattern above and the fixed mask.
@@ -341,11 +432,8 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   // The potential's raw Hessian K and forces f = -grad E at x0; the prescribed velocities are
   // lifted to the right-hand side (b -= A v_fixed) before their rows and columns become identity.
   Eigen::SparseMatrix<double>& A = factor_->A;
-  A = *potential_->hessian(x0).matrix();
-  A.makeCompressed();
-  factor_->check_pattern();
+  factor_->set_scaled(*potential_->hessian(x0).matrix(), h * h);
   const Eigen::VectorXd f0 = -potential_->gradient(x0);
-  A *= h * h;
   Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * f0;
   if (v_fixed.squaredNorm() > 0.0) b -= A * v_fixed + mass_dofs_.cwiseProduct(v_fixed);
   // A = M + h^2 K in K's own storage: rows and columns of fixed DOFs become identity rows. The
@@ -378,7 +466,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     if (&slot == &factor_->lagrangian && slot.refresh_cost() > 0.0 && slot.refresh_cost() < reuse.exact_lagrangian_below)
       r.enabled = false;
     keep_factor = r.enabled;
-    F->use(M, r, counters);
+    F->use(M, r, counters, factor_->pattern);
   };
   auto solve = [&](const Eigen::VectorXd& r, Eigen::VectorXd& out, bool guess) { F->solve(r, out, guess, counters); };
   use(A, factor_->backward_euler);
@@ -443,14 +531,18 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     bool stiffened = false;
     if (limit) {
       const int dofs = 3 * disc.nodes();
+      // Corotational blocks come straight from the form's kernel for node pairs, without the
+      // 24 x 24 matrix element_hessian builds from them (the same values).
+      const auto* corotational = dynamic_cast<const CorotationalHexForm*>(limited_.get());
+      std::vector<char> local_fixed(static_cast<size_t>(dofs));
       for (const auto& [key, lambda_e] : warm) {
         if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
         const std::vector<int>& slots = factor_->slots(disc, key);
-        const Eigen::MatrixXd He = limited_->element_hessian(key, x_k) * (h * lambda_e / limit->max_energy);
         bool any_fixed = false, any_free = false;
         for (int a = 0; a < disc.nodes(); ++a)
           for (int i = 0; i < 3; ++i) {
             const bool f = fixed[static_cast<size_t>(3 * elements(key, a) + i)] != 0;
+            local_fixed[static_cast<size_t>(3 * a + i)] = f ? 1 : 0;
             any_fixed = any_fixed || f;
             any_free = any_free || !f;
           }
@@ -458,31 +550,35 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
         if (!stiffened) {
           // H = A: same pattern (A holds every element block), so A's values are copied into H's
           // storage, kept from earlier steps.
-          const bool same_pattern =
-              H.isCompressed() && H.outerSize() == A.outerSize() && H.nonZeros() == A.nonZeros() &&
-              std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, H.outerIndexPtr()) &&
-              std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), H.innerIndexPtr());
-          if (same_pattern)
-            std::copy(A.valuePtr(), A.valuePtr() + A.nonZeros(), H.valuePtr());
-          else
-            H = A;
+          factor_->copy_a_into_h();
           stiffened = true;
         }
+        // Entry (r, c) of the element block (element DOFs), scaled by h lambda_e / U_max as it is
+        // added, where neither DOF is fixed.
         double* values = H.valuePtr();
-        const double* he = He.data();  // column-major: entry (r, c) at c * dofs + r
-        if (!any_fixed) {
-          for (int c = 0; c < dofs; ++c)
-            for (int r = 0; r < dofs; ++r) values[slots[static_cast<size_t>(r * dofs + c)]] += he[c * dofs + r];
-          continue;
-        }
-        for (int a = 0; a < disc.nodes(); ++a)
-          for (int o = 0; o < disc.nodes(); ++o)
+        const double scale = h * lambda_e / limit->max_energy;
+        auto add = [&](int r, int c, double value) {
+          if (any_fixed && (local_fixed[static_cast<size_t>(r)] || local_fixed[static_cast<size_t>(c)])) return;
+          values[slots[static_cast<size_t>(r * dofs + c)]] += value * scale;
+        };
+        if (corotational) {
+          constexpr int pairs = CorotationalHexForm::kNodePairs;
+          double rotated[9 * pairs];
+          corotational->rotated_pair_blocks(key, corotational->rotation(key, x_k), rotated);
+          for (int p = 0; p < pairs; ++p) {
+            const auto [a, o] = CorotationalHexForm::pair_nodes()[static_cast<size_t>(p)];
             for (int i = 0; i < 3; ++i)
               for (int j = 0; j < 3; ++j) {
-                const Eigen::Index r = 3 * elements(key, a) + i, c = 3 * elements(key, o) + j;
-                if (fixed[r] || fixed[c]) continue;
-                values[slots[static_cast<size_t>((3 * a + i) * dofs + 3 * o + j)]] += He(3 * a + i, 3 * o + j);
+                const double value = rotated[pairs * (3 * i + j) + p];
+                add(3 * a + i, 3 * o + j, value);
+                if (a != o) add(3 * o + j, 3 * a + i, value);
               }
+          }
+          continue;
+        }
+        const Eigen::MatrixXd He = limited_->element_hessian(key, x_k);
+        for (int c = 0; c < dofs; ++c)
+          for (int r = 0; r < dofs; ++r) add(r, c, He(r, c));
       }
     }
     if (stiffened) {
@@ -490,22 +586,21 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     } else if (current != &A) {
       use(A, factor_->backward_euler);
     }
-    const Eigen::VectorXd g = k == 0 && !predicted ? Eigen::VectorXd::Zero(n) : Eigen::VectorXd(A * (v_k - v_star));
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
+    if (k > 0 || predicted) factor_->multiply_a(v_k - v_star, g);
 
     // ---- LCP (Eq. 23) with W = J H^-1 J^T
     const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
     Eigen::VectorXd offset(m), lambda(m);
     std::vector<LcpRow> bounds(m);
-    std::vector<Eigen::Triplet<double>> entries;
     for (Eigen::Index i = 0; i < m; ++i) {
-      for (const auto& [dof, value] : rows[i].jacobian) entries.emplace_back(i, dof, value);
       offset(i) = rows[i].offset;
       bounds[i] = rows[i].bounds;
       const auto w = warm.find(rows[i].key);
       lambda(i) = w == warm.end() ? 0.0 : w->second;
     }
-    Eigen::SparseMatrix<double, Eigen::RowMajor> J(m, n);
-    J.setFromTriplets(entries.begin(), entries.end());
+    Eigen::SparseMatrix<double, Eigen::RowMajor> J;
+    set_rows(J, m, n, [&](Eigen::Index i) -> const auto& { return rows[static_cast<size_t>(i)].jacobian; });
     // W~ = J~ P^-1 J~^T from the factorisation at hand. Columns P^-1 J_i^T are cached per
     // constraint with the Jacobian J~_i they were computed for and reused while J_i stays close
     // (contact rows against a fixed normal do not change at all); new ones come from one
@@ -551,15 +646,10 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
         for (std::size_t c = 0; c < missing.size(); ++c)
           F->columns()[rows[missing[c]].key] = {rows[missing[c]].jacobian, cols.col(static_cast<Eigen::Index>(c))};
       }
-      std::vector<Eigen::Triplet<double>> cached;
       Y.resize(n, m);
-      for (Eigen::Index i = 0; i < m; ++i) {
-        const LaggedFactorization::Column& col = F->columns().at(rows[i].key);
-        for (const auto& [dof, value] : col.jacobian) cached.emplace_back(i, dof, value);
-        Y.col(i) = col.values;
-      }
-      Eigen::SparseMatrix<double, Eigen::RowMajor> Jc(m, n);
-      Jc.setFromTriplets(cached.begin(), cached.end());
+      for (Eigen::Index i = 0; i < m; ++i) Y.col(i) = F->columns().at(rows[i].key).values;
+      Eigen::SparseMatrix<double, Eigen::RowMajor> Jc;
+      set_rows(Jc, m, n, [&](Eigen::Index i) -> const auto& { return F->columns().at(rows[i].key).jacobian; });
       W = Jc * Y;  // sparse-times-dense: O(nnz(J) m)
       for (Eigen::Index i = 0; i < m; ++i) W(i, i) = std::max(W(i, i), 1e-14 * W.diagonal().cwiseAbs().maxCoeff());
       // Bound the cache (n doubles per column) on large meshes.

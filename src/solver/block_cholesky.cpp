@@ -24,6 +24,7 @@ void BlockCholesky::analyze(const Eigen::SparseMatrix<double>& M) {
   if (M.rows() % 3 != 0 || M.rows() != M.cols() || !M.isCompressed())
     throw Error("needs a compressed square matrix with 3 DOFs per vertex", "block Cholesky");
   vertices_ = static_cast<int>(M.rows() / 3);
+  pattern_id_ = 0;  // factorize() sets the caller's id of this pattern
   const int nv = vertices_;
   // The vertex graph and its fill-reducing ordering (as Eigen's simplicial factor: P = Pinv^-1).
   std::vector<Eigen::Triplet<double>> couplings;
@@ -105,8 +106,11 @@ bool BlockCholesky::same_pattern(const Eigen::SparseMatrix<double>& M) const {
          std::equal(pattern_inner_.begin(), pattern_inner_.end(), M.innerIndexPtr());
 }
 
-bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& M) {
-  if (!same_pattern(M)) analyze(M);
+bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& M, std::uint64_t pattern) {
+  if (pattern == 0 || pattern != pattern_id_) {
+    if (!same_pattern(M)) analyze(M);
+    pattern_id_ = pattern;
+  }
   std::fill(blocks_.begin(), blocks_.end(), 0.0);
   double* L = blocks_.data();
   const double* values = M.valuePtr();
@@ -164,6 +168,7 @@ Eigen::MatrixXd BlockCholesky::gram(const Eigen::SparseMatrix<double, Eigen::Row
   const Eigen::Index m = J.rows();
   // Z padded like the kernels' vectors: its padding rows stay zero and add nothing to Z^T Z.
   Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(4 * vertices_, m);
+  int first_of_all = vertices_;  // Z's rows above this vertex are zero in every column
   for (Eigen::Index i = 0; i < m; ++i) {
     int first = vertices_;
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J, i); it; ++it) {
@@ -173,9 +178,11 @@ Eigen::MatrixXd BlockCholesky::gram(const Eigen::SparseMatrix<double, Eigen::Row
     }
     block_kernels::forward(vertices_, start_.data(), rows_.data(), blocks_.data(), diagonal_inverse_.data(),
                            Z.col(i).data(), first);
+    first_of_all = std::min(first_of_all, first);
   }
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(m, m);
-  W.selfadjointView<Eigen::Lower>().rankUpdate(Z.transpose());
+  // The rows every column has zero add nothing to Z^T Z: left out of the product.
+  W.selfadjointView<Eigen::Lower>().rankUpdate(Z.bottomRows(4 * (vertices_ - first_of_all)).transpose());
   return W.selfadjointView<Eigen::Lower>();
 }
 

@@ -107,8 +107,9 @@ LaggedFactorization::LaggedFactorization() : backends_(std::make_unique<Backends
 LaggedFactorization::~LaggedFactorization() = default;
 
 void LaggedFactorization::use(const Eigen::SparseMatrix<double>& M, const FactorizationReuse& reuse,
-                              Counters& counters) {
+                              Counters& counters, std::uint64_t pattern) {
   current_ = &M;
+  pattern_ = pattern;
   reuse_ = reuse;
   exact_ = false;
   if (!reuse.enabled || !valid_ || cg_iterations_since_ >= cg_iterations_per_factorization_) refactor(counters);
@@ -137,7 +138,7 @@ void LaggedFactorization::refactor(Counters& counters) {
   switch (backend_) {
     case Backend::Block:
       if (!analysed_) backends_->block.analyze(*current_);
-      valid_ = backends_->block.factorize(*current_);
+      valid_ = backends_->block.factorize(*current_, pattern_);
       break;
     case Backend::Simplicial:
       valid_ = factorize(backends_->simplicial);
@@ -195,7 +196,8 @@ bool LaggedFactorization::preconditioned_cg(const Eigen::VectorXd& r, Eigen::Vec
   // serially with four partial sums; larger ones use the parallel SparseOperator.
   const SparseOperator op(*current_);
   const bool small = current_->rows() < reuse_.simplicial_below && current_->isCompressed();
-  if (small) {
+  if (small && (pattern_ == 0 || pattern_ != product_pattern_)) {
+    product_pattern_ = pattern_;
     const bool same = product_outer_.size() == static_cast<size_t>(current_->outerSize() + 1) &&
                       product_inner_.size() == static_cast<size_t>(current_->nonZeros()) &&
                       std::equal(product_outer_.begin(), product_outer_.end(), current_->outerIndexPtr()) &&

@@ -6,6 +6,7 @@
 // and its Hessian the warped stiffness: both hold the rotation fixed, so they are not the exact
 // derivatives of the energy (exact_derivatives() is false); the exact element gradient is
 // element_gradient(e, x, JacobianKind::Exact).
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -46,6 +47,14 @@ class CorotationalHexForm final : public ElementForm {
   using ElementMatrix = Eigen::Matrix<double, 24, 24>;
   using ElementVector = Eigen::Matrix<double, 24, 1>;
   const ElementMatrix& element_stiffness(Eigen::Index e) const { return K_[static_cast<size_t>(e)]; }
+  // The node pairs (a, b), a <= b, of an element's blocks: pair p is (pair_nodes[p][0],
+  // pair_nodes[p][1]), column node b ascending, then a.
+  static constexpr int kNodePairs = 36;
+  static const std::array<std::array<int, 2>, kNodePairs>& pair_nodes();
+  // R K_ab R^T for every node pair p (the blocks above and on the diagonal of R K_e R^T):
+  // entry (i, j) of pair p's block at rotated[kNodePairs * (3 i + j) + p]; the same values as
+  // R * K_ab * R^T with Eigen's 3x3 products, computed for all pairs at once.
+  void rotated_pair_blocks(Eigen::Index e, const Mat3& R, double* rotated) const;
 
   // U_e = sum_q w_q psi(eps_q), eps = sym(R^T G - I) (Eq. 11, 13), psi = 1/2 eps : C : eps.
   double element_value(Eigen::Index e, const Eigen::VectorXd& x) const override;
@@ -65,6 +74,9 @@ class CorotationalHexForm final : public ElementForm {
   std::shared_ptr<const Discretization> disc_;
   HookeCoefficients c_;
   std::vector<ElementMatrix> K_;
+  // K_e's pair blocks by lanes: entry (k, l) of pair p at [kNodePairs * (9 e + 3 k + l) + p],
+  // so that a rotation's products run over all pairs with contiguous loads.
+  std::vector<double> pair_blocks_;
   Eigen::VectorXd rest_;                // rest positions X
   std::vector<Mat3> tet_rest_inverse_;  // (X_2 - X_0, X_5 - X_0, X_7 - X_0)^-1 per element
   // The rotations of the last positions a whole-mesh pass saw (value, gradient, Hessian,
@@ -84,6 +96,8 @@ class CorotationalHexForm final : public ElementForm {
   ElementRotation element_rotation(Eigen::Index e, const Eigen::VectorXd& x) const;
   std::shared_ptr<const std::vector<ElementRotation>> all_rotations(const Eigen::VectorXd& x) const;
   double element_value(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const;
+  // R f_a over the element's nodes (the warped force from the rest-frame one).
+  static ElementVector warped_gradient(const Mat3& R, const ElementVector& f);
   // d_a = R^T x_a - X_a over the element's nodes.
   ElementVector unrotated_displacements(Eigen::Index e, const Eigen::VectorXd& x, const Mat3& R) const;
   Eigen::VectorXd element_gradient(Eigen::Index e, const Eigen::VectorXd& x, JacobianKind kind,

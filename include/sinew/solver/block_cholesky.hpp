@@ -9,6 +9,7 @@
 // directly into L.
 #include <Eigen/Core>
 #include <Eigen/Sparse>
+#include <cstdint>
 #include <vector>
 
 #include "sinew/core/types.hpp"
@@ -24,8 +25,10 @@ class BlockCholesky {
   // The ordering, L's block pattern and where M's entries go (M compressed).
   void analyze(const Eigen::SparseMatrix<double>& M);
   // Factorises M (its lower triangle read; analysed again if its pattern is not the analysed
-  // one); false if M is not positive definite.
-  bool factorize(const Eigen::SparseMatrix<double>& M);
+  // one); false if M is not positive definite. `pattern`: the caller's id of M's sparsity
+  // pattern, which it changes whenever the pattern changes (0: none); M's pattern is compared with
+  // the analysed one only when the id is 0 or not the one it was last found equal under.
+  bool factorize(const Eigen::SparseMatrix<double>& M, std::uint64_t pattern = 0);
 
   // x = M^-1 b.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
@@ -58,6 +61,7 @@ class BlockCholesky {
   // triangle in M's own numbering), and the entry's index 12 b + i + 4 j among blocks_' doubles.
   std::vector<int> source_, target_;
   std::vector<int> pattern_outer_, pattern_inner_;  // M's analysed pattern
+  std::uint64_t pattern_id_ = 0;                    // the caller's id of it (0: none)
   double flops_ = 0.0, lnz_ = 0.0;
 };
 

@@ -9,6 +9,7 @@
 // it (the constrained stepper's LCP matrix), dropped when it is refreshed.
 #include <Eigen/Core>
 #include <Eigen/Sparse>
+#include <cstdint>
 #include <memory>
 #include <unordered_map>
 #include <utility>
@@ -58,8 +59,11 @@ class LaggedFactorization {
 
   // Makes M the current matrix (kept by pointer: it must outlive its use) and factorises it
   // when reuse is off, when there is no factorisation yet, or when the budget is spent. Every
-  // matrix given here must have the same sparsity pattern (one symbolic analysis).
-  void use(const Eigen::SparseMatrix<double>& M, const FactorizationReuse& reuse, Counters& counters);
+  // matrix given here must have the same sparsity pattern (one symbolic analysis). `pattern`:
+  // the caller's id of M's sparsity pattern, changed whenever the pattern changes (0: none);
+  // under an id the pattern was already seen with, it is not compared again.
+  void use(const Eigen::SparseMatrix<double>& M, const FactorizationReuse& reuse, Counters& counters,
+           std::uint64_t pattern = 0);
   // Factorises the current matrix now.
   void refactor(Counters& counters);
   // Whether the factorisation is of the current matrix.
@@ -103,6 +107,7 @@ class LaggedFactorization {
   // triple of columns with equal rows (lagged_factorization.cpp).
   std::vector<int> product_outer_, product_inner_;
   std::vector<char> vertex_columns_;
+  std::uint64_t pattern_ = 0, product_pattern_ = 0;  // the current matrix's pattern id, the product's
 };
 
 }  // namespace sinew
