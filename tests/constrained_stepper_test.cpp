@@ -19,6 +19,29 @@ namespace {
 
 using namespace paper001;
 
+// A cantilever of 4 hexahedra under gravity, fixed at x = 0 (density 100): the stepper tests'
+// small beam.
+struct Cantilever {
+  VolumeMesh mesh = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.2, 0.2), Eigen::Vector3i(4, 1, 1));
+  std::shared_ptr<Discretization> disc = std::make_shared<Discretization>(mesh);
+  HookeCoefficients hooke = HookeCoefficients::from_young_poisson(1e5, 0.3);
+  std::shared_ptr<CorotationalHexForm> model = std::make_shared<CorotationalHexForm>(disc, hooke);
+  Eigen::VectorXd masses = lumped_mass(*disc, 100.0);
+  Eigen::Index n = 3 * mesh.num_vertices();
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+  std::vector<char> fixed = std::vector<char>(static_cast<size_t>(n), 0);
+  int wall = -1, tip = -1;  // a vertex at x = 0 and one at x = 1
+
+  Cantilever() {
+    for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v) {
+      f(3 * v + 2) = -9.81 * masses(v);
+      if (mesh.vertices(v, 0) < 1e-9) fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = 1;
+      if (mesh.vertices(v, 0) < 1e-9 && wall < 0) wall = static_cast<int>(v);
+      if (mesh.vertices(v, 0) > 1.0 - 1e-9) tip = static_cast<int>(v);
+    }
+  }
+};
+
 TEST(Paper001Meshes, BeamAndSphereHaveThePapersElementCounts) {
   const VolumeMesh beam = beam_mesh();
   EXPECT_EQ(beam.num_elements(), 56);
@@ -53,17 +76,8 @@ TEST(EnergyLimitedStepper, PredictedStepTestsVStarOnTheActiveElementsFirstButTak
   // A step with a predictor tests v* on the elements with active rows first (a violation there
   // answers the test) and on the whole mesh only when they hold. A cantilever's first step from
   // rest strains the wall element most and the tip element least; the limit lies between them.
-  const VolumeMesh mesh = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.2, 0.2), Eigen::Vector3i(4, 1, 1));
-  auto model = std::make_shared<CorotationalHexForm>(std::make_shared<Discretization>(mesh),
-                                                 HookeCoefficients::from_young_poisson(1e5, 0.3));
-  const Eigen::VectorXd masses = lumped_mass(model->discretization(), 100.0);
-  const Eigen::Index n = 3 * mesh.num_vertices();
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
-  std::vector<char> fixed(static_cast<size_t>(n), 0);
-  for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v) {
-    f(3 * v + 2) = -9.81 * masses(v);
-    if (mesh.vertices(v, 0) < 1e-9) fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = 1;
-  }
+  const Cantilever c;
+  const auto& [mesh, disc, hooke, model, masses, n, f, fixed, wall, tip] = c;
   auto step_once = [&](double limit, std::map<long, double> multipliers, bool predict) {
     EnergyLimitedStepSettings s;
     s.energy_limit = EnergyLimit{limit};
@@ -185,20 +199,8 @@ TEST(EnergyLimitedStepper, StepsAfterTheHessianPatternChangesMatchAStepperBuiltW
   // couplings added between steps), it must take the new one. A cantilever with active energy
   // limits (from the sixth step on), the pattern widened after 7 steps, against a stepper that had
   // the coupling throughout.
-  const VolumeMesh mesh = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.2, 0.2), Eigen::Vector3i(4, 1, 1));
-  auto model = std::make_shared<CorotationalHexForm>(std::make_shared<Discretization>(mesh),
-                                                 HookeCoefficients::from_young_poisson(1e5, 0.3));
-  const Eigen::VectorXd masses = lumped_mass(model->discretization(), 100.0);
-  const Eigen::Index n = 3 * mesh.num_vertices();
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
-  std::vector<char> fixed(static_cast<size_t>(n), 0);
-  int wall = -1, tip = -1;
-  for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v) {
-    f(3 * v + 2) = -9.81 * masses(v);
-    if (mesh.vertices(v, 0) < 1e-9) fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = 1;
-    if (mesh.vertices(v, 0) < 1e-9 && wall < 0) wall = static_cast<int>(v);
-    if (mesh.vertices(v, 0) > 1.0 - 1e-9) tip = static_cast<int>(v);
-  }
+  const Cantilever c;
+  const auto& [mesh, disc, hooke, model, masses, n, f, fixed, wall, tip] = c;
   EnergyLimitedStepSettings s;
   s.energy_limit = EnergyLimit{0.05};
   auto run = [&](bool coupled_from_start) {
@@ -256,17 +258,8 @@ TEST(EnergyLimitedStepper, CorotationalLagrangianBlocksAreTheElementHessiansBitF
   // The stepper adds a corotational element's Lagrangian Hessian block from the form's node-pair
   // kernel; through the generic ElementForm path (element_hessian) the motion must be the same
   // bit for bit. A cantilever with active limits, also on the elements at the fixed wall.
-  const VolumeMesh mesh = box_lattice(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0.2, 0.2), Eigen::Vector3i(4, 1, 1));
-  const auto disc = std::make_shared<Discretization>(mesh);
-  const HookeCoefficients hooke = HookeCoefficients::from_young_poisson(1e5, 0.3);
-  const Eigen::VectorXd masses = lumped_mass(*disc, 100.0);
-  const Eigen::Index n = 3 * mesh.num_vertices();
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
-  std::vector<char> fixed(static_cast<size_t>(n), 0);
-  for (Eigen::Index v = 0; v < mesh.num_vertices(); ++v) {
-    f(3 * v + 2) = -9.81 * masses(v);
-    if (mesh.vertices(v, 0) < 1e-9) fixed[3 * v] = fixed[3 * v + 1] = fixed[3 * v + 2] = 1;
-  }
+  const Cantilever c;
+  const auto& [mesh, disc, hooke, model, masses, n, f, fixed, wall, tip] = c;
   EnergyLimitedStepSettings s;
   s.energy_limit = EnergyLimit{0.02};
   auto run = [&](bool generic) {
