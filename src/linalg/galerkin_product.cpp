@@ -13,7 +13,6 @@ namespace {
 
 using BlockList = std::vector<std::pair<int, Mat3>, Eigen::aligned_allocator<std::pair<int, Mat3>>>;
 
-
 }  // namespace
 
 std::vector<std::vector<int>> block_pattern(const Eigen::SparseMatrix<double>& A) {
@@ -103,9 +102,8 @@ void GalerkinProduct::compute_rows(const BlockRow& row, std::span<const char> fi
   // that I interpolates of w_aI (A P)_a, added in colour order (gather_entries_). That is the
   // order of a scatter over colour classes, so C is bitwise what such a scatter gives; but each
   // row of C is written once, by one task, where the scatter swept all of C once per colour
-  // (27 passes at 125 blocks per row, out of cache on large lattices), and the fine rows are read
-  // near each other. (A P)_a is formed once per coarse vertex of a (3.4 on average) instead of
-  // once, all in cache.
+  // (27 passes on a lattice, out of cache on large ones), and the fine rows are read near each
+  // other. (A P)_a is needed once per coarse vertex of a (3.4 on average on a lattice).
   //
   // Per thread, indexed by coarse vertex: J's position in the row (A P)_a being formed, and J's
   // slot in row I of C (-1 where unset; each use resets what it set). And the rows (A P)_a formed
