@@ -299,21 +299,26 @@ Eigen::VectorXd CorotationalHexForm::element_gradient(Eigen::Index e, const Eige
 }
 
 Eigen::MatrixXd CorotationalHexForm::element_hessian(Eigen::Index e, const Eigen::VectorXd& x) const {
+  Eigen::MatrixXd H;
+  element_hessian_into(e, x, H);
+  return H;
+}
+
+void CorotationalHexForm::element_hessian_into(Eigen::Index e, const Eigen::VectorXd& x, Eigen::MatrixXd& He) const {
   // The blocks on and above the diagonal, mirrored below it (K_e is symmetric): the blocks
   // add_hessian assembles.
   double rotated[9 * kNodePairs];
   rotated_pair_blocks(e, element_rotation(e, x).R, rotated);
-  Eigen::MatrixXd H(24, 24);
+  He.resize(24, 24);
   for (int p = 0; p < kNodePairs; ++p) {
     const auto [a, b] = pair_nodes()[static_cast<size_t>(p)];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
         const double v = rotated[kNodePairs * (3 * i + j) + p];
-        H(3 * a + i, 3 * b + j) = v;
-        if (a != b) H(3 * b + j, 3 * a + i) = v;
+        He(3 * a + i, 3 * b + j) = v;
+        if (a != b) He(3 * b + j, 3 * a + i) = v;
       }
   }
-  return H;
 }
 
 double CorotationalHexForm::value(const Eigen::VectorXd& x) const {

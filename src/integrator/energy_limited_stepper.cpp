@@ -7,7 +7,6 @@
 #include <map>
 
 #include "sinew/core/error.hpp"
-#include "sinew/forms/corotational_hex_form.hpp"
 #include "sinew/forms/external_force_form.hpp"
 #include "sinew/solver/lagged_factorization.hpp"
 #include "sinew/solver/serial_openmp.hpp"
@@ -195,6 +194,7 @@ struct EnergyLimitedStepper::Factorization {
   tbb::task_arena one_thread{1};
   LaggedFactorization backward_euler, lagrangian;
   Eigen::SparseMatrix<double> A, H;
+  Eigen::MatrixXd element_hessian;  // an active element's Hessian block, storage reused
   // Per element (filled when it is first stiffened): the index among A's values of each entry of
   // its block, row-major over the element's DOFs; valid for the pattern below.
   std::vector<std::vector<int>> block_slots;
@@ -202,13 +202,17 @@ struct EnergyLimitedStepper::Factorization {
 
   // A = scale K for the potential's Hessian K. When K's pattern is the one the slots were found
   // for (the usual case: it is built once), only the values are written, scaled in the same
-  // pass; otherwise A takes K's pattern and the slots are dropped.
-  void set_scaled(const Eigen::SparseMatrix<double>& K, double scale) {
-    const bool same = K.isCompressed() && static_cast<Eigen::Index>(slots_outer.size()) == K.outerSize() + 1 &&
-                      static_cast<Eigen::Index>(slots_inner.size()) == K.nonZeros() &&
-                      A.outerSize() == K.outerSize() && A.nonZeros() == K.nonZeros() && A.isCompressed() &&
-                      std::equal(slots_outer.begin(), slots_outer.end(), K.outerIndexPtr()) &&
-                      std::equal(slots_inner.begin(), slots_inner.end(), K.innerIndexPtr());
+  // pass; otherwise A takes K's pattern and the slots are dropped. `k_pattern` is K's pattern id
+  // (LinearOperator::pattern_id): the one seen last stands for the pattern; 0 (unknown) or a new
+  // id compares the patterns.
+  void set_scaled(const Eigen::SparseMatrix<double>& K, double scale, std::uint64_t k_pattern) {
+    const bool sizes = K.isCompressed() && static_cast<Eigen::Index>(slots_outer.size()) == K.outerSize() + 1 &&
+                       static_cast<Eigen::Index>(slots_inner.size()) == K.nonZeros() &&
+                       A.outerSize() == K.outerSize() && A.nonZeros() == K.nonZeros() && A.isCompressed();
+    const bool same = sizes && ((k_pattern != 0 && k_pattern == last_k_pattern) ||
+                                (std::equal(slots_outer.begin(), slots_outer.end(), K.outerIndexPtr()) &&
+                                 std::equal(slots_inner.begin(), slots_inner.end(), K.innerIndexPtr())));
+    last_k_pattern = k_pattern;
     if (same) {
       Eigen::Map<Eigen::VectorXd>(A.valuePtr(), A.nonZeros()) =
           Eigen::Map<const Eigen::VectorXd>(K.valuePtr(), K.nonZeros()) * scale;
@@ -275,6 +279,7 @@ struct EnergyLimitedStepper::Factorization {
       ++c;
     }
   }
+  std::uint64_t last_k_pattern = 0;  // the potential Hessian's pattern id set_scaled saw last
   // The id of A's pattern (and H's, which is A's) for the factorisations, so that they need not
   // compare the patterns of every matrix they are given; set_scaled changes it with the pattern.
   std::uint64_t pattern = 0;
@@ -432,7 +437,8 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
   // The potential's raw Hessian K and forces f = -grad E at x0; the prescribed velocities are
   // lifted to the right-hand side (b -= A v_fixed) before their rows and columns become identity.
   Eigen::SparseMatrix<double>& A = factor_->A;
-  factor_->set_scaled(*potential_->hessian(x0).matrix(), h * h);
+  const LinearOperator& K = potential_->hessian(x0);
+  factor_->set_scaled(*K.matrix(), h * h, K.pattern_id());
   const Eigen::VectorXd f0 = -potential_->gradient(x0);
   Eigen::VectorXd b = mass_dofs_.cwiseProduct(v) + h * f0;
   if (v_fixed.squaredNorm() > 0.0) b -= A * v_fixed + mass_dofs_.cwiseProduct(v_fixed);
@@ -531,10 +537,8 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
     bool stiffened = false;
     if (limit) {
       const int dofs = 3 * disc.nodes();
-      // Corotational blocks come straight from the form's kernel for node pairs, without the
-      // 24 x 24 matrix element_hessian builds from them (the same values).
-      const auto* corotational = dynamic_cast<const CorotationalHexForm*>(limited_.get());
       std::vector<char> local_fixed(static_cast<size_t>(dofs));
+      Eigen::MatrixXd& He = factor_->element_hessian;  // storage kept from element to element
       for (const auto& [key, lambda_e] : warm) {
         if (key < 0 || lambda_e <= 0.0) continue;  // contact rows are linear
         const std::vector<int>& slots = factor_->slots(disc, key);
@@ -561,22 +565,7 @@ EnergyLimitedStepReport EnergyLimitedStepper::step(Eigen::VectorXd& x, Eigen::Ve
           if (any_fixed && (local_fixed[static_cast<size_t>(r)] || local_fixed[static_cast<size_t>(c)])) return;
           values[slots[static_cast<size_t>(r * dofs + c)]] += value * scale;
         };
-        if (corotational) {
-          constexpr int pairs = CorotationalHexForm::kNodePairs;
-          double rotated[9 * pairs];
-          corotational->rotated_pair_blocks(key, corotational->rotation(key, x_k), rotated);
-          for (int p = 0; p < pairs; ++p) {
-            const auto [a, o] = CorotationalHexForm::pair_nodes()[static_cast<size_t>(p)];
-            for (int i = 0; i < 3; ++i)
-              for (int j = 0; j < 3; ++j) {
-                const double value = rotated[pairs * (3 * i + j) + p];
-                add(3 * a + i, 3 * o + j, value);
-                if (a != o) add(3 * o + j, 3 * a + i, value);
-              }
-          }
-          continue;
-        }
-        const Eigen::MatrixXd He = limited_->element_hessian(key, x_k);
+        limited_->element_hessian_into(key, x_k, He);
         for (int c = 0; c < dofs; ++c)
           for (int r = 0; r < dofs; ++r) add(r, c, He(r, c));
       }

@@ -62,6 +62,8 @@ class CorotationalHexForm final : public ElementForm {
   bool supports(JacobianKind) const override { return true; }
   // R K_e R^T (the rotation's change neglected, as in the warped stiffness).
   Eigen::MatrixXd element_hessian(Eigen::Index e, const Eigen::VectorXd& x) const override;
+  // The same, from the node-pair blocks straight into He (24 x 24).
+  void element_hessian_into(Eigen::Index e, const Eigen::VectorXd& x, Eigen::MatrixXd& He) const override;
 
   // Form: E = sum_e U_e; gradient sum_e R K_e (R^T x_e - X_e) (the warped force, Eq. 17);
   // Hessian sum_e R K_e R^T.

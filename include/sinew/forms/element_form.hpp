@@ -34,6 +34,11 @@ class ElementForm : public Form {
   virtual bool supports(JacobianKind kind) const { return kind == JacobianKind::Exact; }
   // The element's block of the form's Hessian (3 * nodes square, PSD as add_hessian assembles it).
   virtual Eigen::MatrixXd element_hessian(Eigen::Index e, const Eigen::VectorXd& x) const = 0;
+  // The same matrix written into He, whose storage loops over many elements reuse. The default
+  // copies element_hessian(); a form that can fill He without a temporary overrides it.
+  virtual void element_hessian_into(Eigen::Index e, const Eigen::VectorXd& x, Eigen::MatrixXd& He) const {
+    He = element_hessian(e, x);
+  }
   // y = H_e dx_e for the element's nodal increment dx_e (3 * nodes): what a matrix-free operator
   // applies. The default forms H_e; a form may do it without.
   virtual Eigen::VectorXd element_hessian_product(Eigen::Index e, const Eigen::VectorXd& x,
