@@ -81,6 +81,34 @@ TEST(BlockCholesky, GramMatrixOfSparseRowsMatchesFullSolves) {
   EXPECT_LT((W - W.transpose()).norm(), 1e-15 * W.norm());
 }
 
+TEST(BlockCholesky, SolvesManyRightHandSidesAsOneAtATime) {
+  // Columns like the LCP's J^T (sparse, zero above their first vertex in any order) and dense
+  // ones, a count that is not a whole number of vectors: each column as its own solve gives.
+  const Eigen::SparseMatrix<double> A = block_lattice(6, 3, 2, 30.0);
+  const Eigen::Index n = A.rows();
+  BlockCholesky F;
+  F.analyze(A);
+  ASSERT_TRUE(F.factorize(A));
+  for (const int m : {1, 11}) {
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n, m);
+    for (int c = 0; c < m; ++c) {
+      if (c % 3 == 2) {
+        B.col(c) = Eigen::VectorXd::LinSpaced(n, -1.0 - c, 2.0 + c);
+        continue;
+      }
+      for (int k = 0; k < 24; ++k) B((41 * c + 13 * k) % n, c) = std::sin(1.0 + c + 0.7 * k);
+    }
+    const Eigen::MatrixXd X = F.solve(B);
+    ASSERT_EQ(X.rows(), n);
+    ASSERT_EQ(X.cols(), m);
+    for (int c = 0; c < m; ++c) {
+      const Eigen::VectorXd x = F.solve(Eigen::VectorXd(B.col(c)));
+      EXPECT_LT((X.col(c) - x).norm(), 1e-14 * x.norm()) << "column " << c << " of " << m;
+    }
+    EXPECT_LT((Eigen::MatrixXd(A) * X - B).norm(), 1e-12 * B.norm());
+  }
+}
+
 TEST(BlockCholesky, ReadsTheLowerTriangleAndFollowsNewValuesAndPatterns) {
   const Eigen::SparseMatrix<double> A = block_lattice(4, 2, 2, 30.0);
   BlockCholesky F;

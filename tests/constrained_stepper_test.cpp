@@ -383,13 +383,13 @@ TEST(EnergyLimitedStepper, LaggedSolvesFallBackToRefactorisation) {
 
 TEST(EnergyLimitedStepper, BlockFactorOfSmallMatricesGivesCholmodsMotion) {
   // The beam's and the sphere's matrices (56 and 27 hexahedra) are factorised on 3x3 vertex
-  // blocks (BlockCholesky); forcing CHOLMOD everywhere (simplicial_below = 0) must give the same
+  // blocks (BlockCholesky); forcing CHOLMOD everywhere (block_factorization_below = 0) must give the same
   // motion up to the CG and LCP tolerances, with the limits and contacts held.
   SphereConfig sphere;
   sphere.max_energy = 500.0;
   sphere.duration = 1.5;
   SphereConfig sphere_cholmod = sphere;
-  sphere_cholmod.solver.reuse.simplicial_below = 0;
+  sphere_cholmod.solver.reuse.block_factorization_below = 0;
   const SphereResult a = run_falling_sphere(sphere_cholmod), b = run_falling_sphere(sphere);
   fmt::print("sphere U_e <= 500 J: CHOLMOD {} factorisations + {} CG, blocks {} + {}; compression {:.6f} / {:.6f}, "
              "rebound {:.6f} / {:.6f}\n",
@@ -407,7 +407,7 @@ TEST(EnergyLimitedStepper, BlockFactorOfSmallMatricesGivesCholmodsMotion) {
   beam.max_energy = 0.5;
   beam.duration = 1.0;
   BeamConfig beam_cholmod = beam;
-  beam_cholmod.solver.reuse.simplicial_below = 0;
+  beam_cholmod.solver.reuse.block_factorization_below = 0;
   const BeamResult c = run_beam(beam_cholmod), d = run_beam(beam);
   fmt::print("beam U_e <= 0.5 J: CHOLMOD {} factorisations + {} CG, blocks {} + {}; tip deflection {:.7f} / {:.7f} m\n",
              c.totals.factorizations, c.totals.cg_iterations, d.totals.factorizations, d.totals.cg_iterations,

@@ -129,9 +129,9 @@ Eigen::SparseMatrix<double> lattice_matrix(int cells, double mass) {
 }
 
 TEST(LaggedFactorization, SmallMatricesGetEigensSimplicialFactorWithCholmodsAnswers) {
-  // Below `simplicial_below` rows (and with short columns of L) the factorisation is Eigen's
-  // simplicial LLT instead of CHOLMOD's supernodal one: the same solves, lagged solves and cost
-  // estimate up to rounding.
+  // Below `block_factorization_below` rows (and with short columns of L) the factorisation is
+  // Eigen's simplicial LLT instead of CHOLMOD's supernodal one: the same solves, lagged solves and
+  // cost estimate up to rounding.
   const Eigen::SparseMatrix<double> A1 = lattice_matrix(14, 1.0), A2 = lattice_matrix(14, 1.2);  // 405 DOFs
   const Eigen::Index n = A1.rows();
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
@@ -139,8 +139,8 @@ TEST(LaggedFactorization, SmallMatricesGetEigensSimplicialFactorWithCholmodsAnsw
   FactorizationReuse simplicial, cholmod;
   simplicial.cg_tolerance = cholmod.cg_tolerance = 1e-12;
   simplicial.max_cg_iterations = cholmod.max_cg_iterations = 100;
-  cholmod.simplicial_below = 0;
-  ASSERT_GT(simplicial.simplicial_below, n);
+  cholmod.block_factorization_below = 0;
+  ASSERT_GT(simplicial.block_factorization_below, n);
   LaggedFactorization S, C;
   LaggedFactorization::Counters cs, cc;
   S.use(A1, simplicial, cs);
@@ -233,9 +233,9 @@ TEST(LaggedFactorization, GramMatrixMatchesTheColumnsOfEitherFactor) {
   Eigen::SparseMatrix<double, Eigen::RowMajor> J(7, n);
   J.setFromTriplets(t.begin(), t.end());
   const Eigen::MatrixXd Jt = Eigen::MatrixXd(J.transpose());
-  for (const int simplicial_below : {1000, 0}) {
+  for (const int block_factorization_below : {1000, 0}) {
     FactorizationReuse reuse;
-    reuse.simplicial_below = simplicial_below;
+    reuse.block_factorization_below = block_factorization_below;
     LaggedFactorization F;
     LaggedFactorization::Counters counters;
     F.use(A, reuse, counters);
@@ -243,7 +243,7 @@ TEST(LaggedFactorization, GramMatrixMatchesTheColumnsOfEitherFactor) {
     const Eigen::MatrixXd W = F.gram(J);
     ASSERT_EQ(W.rows(), 7);
     ASSERT_EQ(W.cols(), 7);
-    EXPECT_LT((W - expected).norm(), 1e-12 * expected.norm()) << "simplicial_below " << simplicial_below;
+    EXPECT_LT((W - expected).norm(), 1e-12 * expected.norm()) << "block_factorization_below " << block_factorization_below;
     EXPECT_LT((W - W.transpose()).norm(), 1e-14 * W.norm());
   }
 }

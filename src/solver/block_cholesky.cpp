@@ -118,14 +118,6 @@ bool BlockCholesky::factorize(const Eigen::SparseMatrix<double>& M, std::uint64_
   return block_kernels::factorize(vertices_, start_.data(), rows_.data(), L, diagonal_inverse_.data(), work_.data());
 }
 
-Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>> BlockCholesky::block(int p) const {
-  return Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>>(blocks_.data() + block_kernels::kBlock * p);
-}
-
-Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>> BlockCholesky::diagonal_inverse(int j) const {
-  return Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>>(diagonal_inverse_.data() + block_kernels::kBlock * j);
-}
-
 Eigen::VectorXd BlockCholesky::solve(const Eigen::VectorXd& b) const {
   Eigen::VectorXd y = Eigen::VectorXd::Zero(4 * vertices_);  // padded, permuted
   for (int v = 0; v < vertices_; ++v) y.segment<3>(4 * new_of_old_[static_cast<size_t>(v)]) = b.segment<3>(3 * v);
@@ -137,30 +129,27 @@ Eigen::VectorXd BlockCholesky::solve(const Eigen::VectorXd& b) const {
 }
 
 Eigen::MatrixXd BlockCholesky::solve(const Eigen::MatrixXd& B) const {
-  // All right-hand sides at once, row-major so that a vertex's 3 rows are contiguous: each block
-  // of L is read once for all columns (the LCP's columns of H^-1 J^T, tens per solve).
-  using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  using Block = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::RowMajor>;
-  const Eigen::Index m = B.cols();
-  Rows Y(B.rows(), m);
-  for (int v = 0; v < vertices_; ++v) Y.middleRows<3>(3 * new_of_old_[static_cast<size_t>(v)]) = B.middleRows<3>(3 * v);
-  Block z(3, m);
-  for (int j = 0; j < vertices_; ++j) {
-    auto yj = Y.middleRows<3>(3 * j);
-    if (yj.isZero(0.0)) continue;  // sparse right-hand sides: nothing to carry down
-    z.noalias() = diagonal_inverse(j) * yj;
-    yj = z;
-    for (int p = start_[static_cast<size_t>(j)] + 1; p < start_[static_cast<size_t>(j) + 1]; ++p)
-      Y.middleRows<3>(3 * rows_[static_cast<size_t>(p)]).noalias() -= block(p) * z;
+  // All right-hand sides at once, row-major (the kernels' layout: each block of L is read once
+  // for all columns, the LCP's columns of H^-1 J^T, tens per solve), rows padded to whole
+  // vectors.
+  const int m = static_cast<int>(B.cols());
+  const int ld = (m + 7) / 8 * 8;
+  std::vector<double> Y(static_cast<size_t>(3 * vertices_) * static_cast<size_t>(ld), 0.0);
+  for (int v = 0; v < vertices_; ++v) {
+    double* y = Y.data() + static_cast<size_t>(3 * new_of_old_[static_cast<size_t>(v)]) * static_cast<size_t>(ld);
+    for (int c = 0; c < m; ++c)
+      for (int r = 0; r < 3; ++r) y[static_cast<size_t>(r * ld + c)] = B(3 * v + r, c);
   }
-  for (int j = vertices_ - 1; j >= 0; --j) {
-    z = Y.middleRows<3>(3 * j);
-    for (int p = start_[static_cast<size_t>(j)] + 1; p < start_[static_cast<size_t>(j) + 1]; ++p)
-      z.noalias() -= block(p).transpose() * Y.middleRows<3>(3 * rows_[static_cast<size_t>(p)]);
-    Y.middleRows<3>(3 * j).noalias() = diagonal_inverse(j).transpose() * z;
-  }
+  block_kernels::forward_many(vertices_, start_.data(), rows_.data(), blocks_.data(), diagonal_inverse_.data(), Y.data(),
+                              ld, m);
+  block_kernels::backward_many(vertices_, start_.data(), rows_.data(), blocks_.data(), diagonal_inverse_.data(), Y.data(),
+                               ld, m);
   Eigen::MatrixXd X(B.rows(), m);
-  for (int v = 0; v < vertices_; ++v) X.middleRows<3>(3 * v) = Y.middleRows<3>(3 * new_of_old_[static_cast<size_t>(v)]);
+  for (int v = 0; v < vertices_; ++v) {
+    const double* y = Y.data() + static_cast<size_t>(3 * new_of_old_[static_cast<size_t>(v)]) * static_cast<size_t>(ld);
+    for (int c = 0; c < m; ++c)
+      for (int r = 0; r < 3; ++r) X(3 * v + r, c) = y[static_cast<size_t>(r * ld + c)];
+  }
   return X;
 }
 

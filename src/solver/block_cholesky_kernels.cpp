@@ -139,4 +139,74 @@ void backward(int nv, const int* start, const int* rows, const double* blocks, c
   }
 }
 
+void forward_many(int nv, const int* start, const int* rows, const double* blocks, const double* diagonal_inverse,
+                  double* Y, int ld, int m) {
+  for (int j = 0; j < nv; ++j) {
+    double* __restrict y0 = Y + static_cast<long>(3 * j) * ld;
+    double* __restrict y1 = y0 + ld;
+    double* __restrict y2 = y1 + ld;
+    bool zero = true;
+    for (int c = 0; c < m && zero; ++c) zero = y0[c] == 0.0 && y1[c] == 0.0 && y2[c] == 0.0;
+    if (zero) continue;
+    const double* I = diagonal_inverse + kBlock * j;
+    const double i00 = I[0], i10 = I[1], i20 = I[2], i11 = I[5], i21 = I[6], i22 = I[10];
+#pragma omp simd
+    for (int c = 0; c < m; ++c) {
+      const double a = y0[c], b = y1[c], d = y2[c];
+      y0[c] = i00 * a;
+      y1[c] = i10 * a + i11 * b;
+      y2[c] = i20 * a + i21 * b + i22 * d;
+    }
+    for (int p = start[j] + 1; p < start[j + 1]; ++p) {
+      const double* X = blocks + kBlock * p;
+      double* __restrict t0 = Y + static_cast<long>(3 * rows[p]) * ld;
+      double* __restrict t1 = t0 + ld;
+      double* __restrict t2 = t1 + ld;
+      const double x00 = X[0], x10 = X[1], x20 = X[2], x01 = X[4], x11 = X[5], x21 = X[6], x02 = X[8], x12 = X[9],
+                   x22 = X[10];
+#pragma omp simd
+      for (int c = 0; c < m; ++c) {
+        const double z0 = y0[c], z1 = y1[c], z2 = y2[c];
+        t0[c] -= x00 * z0 + x01 * z1 + x02 * z2;
+        t1[c] -= x10 * z0 + x11 * z1 + x12 * z2;
+        t2[c] -= x20 * z0 + x21 * z1 + x22 * z2;
+      }
+    }
+  }
+}
+
+void backward_many(int nv, const int* start, const int* rows, const double* blocks, const double* diagonal_inverse,
+                   double* Y, int ld, int m) {
+  for (int j = nv - 1; j >= 0; --j) {
+    double* __restrict y0 = Y + static_cast<long>(3 * j) * ld;
+    double* __restrict y1 = y0 + ld;
+    double* __restrict y2 = y1 + ld;
+    // s = y_j - sum_p L_p^T y_rows[p], in place, then y_j = L_jj^-T s.
+    for (int p = start[j] + 1; p < start[j + 1]; ++p) {
+      const double* X = blocks + kBlock * p;
+      const double* __restrict t0 = Y + static_cast<long>(3 * rows[p]) * ld;
+      const double* __restrict t1 = t0 + ld;
+      const double* __restrict t2 = t1 + ld;
+      const double x00 = X[0], x10 = X[1], x20 = X[2], x01 = X[4], x11 = X[5], x21 = X[6], x02 = X[8], x12 = X[9],
+                   x22 = X[10];
+#pragma omp simd
+      for (int c = 0; c < m; ++c) {
+        const double a = t0[c], b = t1[c], d = t2[c];
+        y0[c] -= x00 * a + x10 * b + x20 * d;
+        y1[c] -= x01 * a + x11 * b + x21 * d;
+        y2[c] -= x02 * a + x12 * b + x22 * d;
+      }
+    }
+    const double* I = diagonal_inverse + kBlock * j;
+    const double i00 = I[0], i10 = I[1], i20 = I[2], i11 = I[5], i21 = I[6], i22 = I[10];
+#pragma omp simd
+    for (int c = 0; c < m; ++c) {
+      const double s0 = y0[c], s1 = y1[c], s2 = y2[c];
+      y0[c] = i00 * s0 + i10 * s1 + i20 * s2;
+      y1[c] = i11 * s1 + i21 * s2;
+      y2[c] = i22 * s2;
+    }
+  }
+}
+
 }  // namespace sinew::block_kernels

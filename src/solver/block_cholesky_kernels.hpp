@@ -24,4 +24,13 @@ void forward(int nv, const int* start, const int* rows, const double* blocks, co
 // y = L^-T y, in place.
 void backward(int nv, const int* start, const int* rows, const double* blocks, const double* diagonal_inverse, double* y);
 
+// The same for m right-hand sides at once, Y row-major: vertex v's three rows start at
+// Y + 3 v ld, each with the m columns side by side, so that a block of L is read once for all
+// of them and each update is a vector operation over the columns. forward_many skips the
+// vertices whose rows are zero in every column (sparse right-hand sides).
+void forward_many(int nv, const int* start, const int* rows, const double* blocks, const double* diagonal_inverse,
+                  double* Y, int ld, int m);
+void backward_many(int nv, const int* start, const int* rows, const double* blocks, const double* diagonal_inverse,
+                   double* Y, int ld, int m);
+
 }  // namespace sinew::block_kernels

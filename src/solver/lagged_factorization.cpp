@@ -119,7 +119,7 @@ void LaggedFactorization::refactor(Counters& counters) {
   const auto t = Clock::now();
   if (!analysed_) {
     backend_ = Backend::Cholmod;
-    if (current_->rows() < reuse_.simplicial_below)
+    if (current_->rows() < reuse_.block_factorization_below)
       backend_ = BlockCholesky::suits(*current_) ? Backend::Block
                  : short_columns(*current_)      ? Backend::Simplicial
                                                  : Backend::Cholmod;
@@ -192,10 +192,10 @@ bool LaggedFactorization::preconditioned_cg(const Eigen::VectorXd& r, Eigen::Vec
   if (!guess || r_norm == 0.0) out.setZero(n);
   if (r_norm == 0.0) return true;
   const double target = reuse_.cg_tolerance * r_norm;
-  // Below simplicial_below rows (the matrices the small factorisations serve) the product runs
+  // Below block_factorization_below rows (the matrices the small factorisations serve) the product runs
   // serially with four partial sums; larger ones use the parallel SparseOperator.
   const SparseOperator op(*current_);
-  const bool small = current_->rows() < reuse_.simplicial_below && current_->isCompressed();
+  const bool small = current_->rows() < reuse_.block_factorization_below && current_->isCompressed();
   if (small && (pattern_ == 0 || pattern_ != product_pattern_)) {
     product_pattern_ = pattern_;
     const bool same = product_outer_.size() == static_cast<size_t>(current_->outerSize() + 1) &&

@@ -43,9 +43,6 @@ class BlockCholesky {
   double nonzeros() const { return lnz_; }
 
  private:
-  // L's block p and the inverse of column j's diagonal block, as 3x3 matrices.
-  Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>> block(int p) const;
-  Eigen::Map<const Mat3, 0, Eigen::OuterStride<4>> diagonal_inverse(int j) const;
   bool same_pattern(const Eigen::SparseMatrix<double>& M) const;
 
   int vertices_ = 0;

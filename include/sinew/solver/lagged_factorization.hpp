@@ -31,11 +31,14 @@ struct FactorizationReuse {
   double column_reuse_tolerance = 0.1;
   // Matrices with fewer rows than this are factorised on 3x3 vertex blocks (BlockCholesky) when
   // they have 3 DOFs per vertex and filled blocks, else by Eigen's simplicial LLT when their
-  // factor has short columns (lagged_factorization.cpp), instead of CHOLMOD's supernodal one,
-  // whose fixed costs (permuting A into a new matrix, BLAS calls on tiny supernodes) are then
-  // most of a factorisation (docs/performance.md, paper 001's examples). All give the same
-  // factor up to rounding; 0 always uses CHOLMOD.
-  int simplicial_below = 1000;
+  // factor has short columns (lagged_factorization.cpp), instead of CHOLMOD's supernodal one.
+  // On paper 001's scenes CHOLMOD's fixed costs (permuting A into a new matrix, BLAS calls on
+  // tiny supernodes) are most of a small factorisation, and its solves with the LCP's tens of
+  // right-hand sides cost more than the block kernels' up to ~5,500 DOFs, where a step with
+  // factorisation reuse is still 20-28 % faster on blocks though a block factorisation takes
+  // 1.75x CHOLMOD's time; at ~11,000 DOFs (8x) CHOLMOD wins (docs/performance.md). All give
+  // the same factor up to rounding; 0 always uses CHOLMOD.
+  int block_factorization_below = 6000;
   // The constrained stepper factorises every Lagrangian Hessian (no lagged one) when a
   // factorisation costs fewer CG iterations than this (refresh_cost(): about 5 for paper 001's
   // beam, 8 for its 27-hexahedron sphere, 50 at 1,872 DOFs): a lagged H costs two or more CG
