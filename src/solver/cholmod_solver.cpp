@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "sinew/core/error.hpp"
+#include "sinew/linalg/pattern_memo.hpp"
 #include "sinew/solver/linear_solver.hpp"
 #include "sinew/solver/serial_openmp.hpp"
 
@@ -23,10 +24,7 @@ class CholmodSolver final : public LinearSolver {
     if (!op.matrix()) throw Error("CHOLMOD needs an assembled matrix; use pcg with a matrix-free operator", "solver.linear");
     const Eigen::SparseMatrix<double>& A = *op.matrix();
     const SerialOpenMpScope serial_cholmod;
-    if (!same_pattern(A)) {
-      llt_.analyzePattern(A);
-      remember_pattern(A);
-    }
+    if (!pattern_.same_or_remember(A, op.pattern_id())) llt_.analyzePattern(A);
     // A PSD-projected Hessian can be singular (clamped modes of unconstrained parts); shift
     // the diagonal slightly and retry rather than give up.
     double shift = 0.0;
@@ -49,21 +47,8 @@ class CholmodSolver final : public LinearSolver {
   }
 
  private:
-  bool same_pattern(const Eigen::SparseMatrix<double>& A) const {
-    return A.rows() == rows_ && A.nonZeros() == nnz_ &&
-           std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, outer_.begin()) &&
-           std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), inner_.begin());
-  }
-  void remember_pattern(const Eigen::SparseMatrix<double>& A) {
-    rows_ = A.rows();
-    nnz_ = A.nonZeros();
-    outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
-    inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-  }
-
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt_;
-  Eigen::Index rows_ = -1, nnz_ = -1;
-  std::vector<int> outer_, inner_;
+  PatternMemo pattern_;  // the pattern llt_ was analysed for
 };
 
 }  // namespace

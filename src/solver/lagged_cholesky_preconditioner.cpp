@@ -21,23 +21,9 @@ void LaggedCholeskyPreconditioner::setup(const LinearOperator& op, const SolverC
   if (!A) throw Error("needs an assembled matrix (the operator is matrix-free); use jacobi or block_jacobi",
                       "preconditioner lagged_cholesky");
   exact_ = false;
-  const bool pattern_changed = !same_pattern(*A);
-  if (!valid_ || pattern_changed || applications_since_ >= settings_.refresh_cost_factor * refresh_cost_) {
-    if (pattern_changed) {
-      cholmod_->llt.analyzePattern(*A);
-      rows_ = A->rows();
-      nnz_ = A->nonZeros();
-      outer_.assign(A->outerIndexPtr(), A->outerIndexPtr() + A->outerSize() + 1);
-      inner_.assign(A->innerIndexPtr(), A->innerIndexPtr() + A->nonZeros());
-    }
-    factorize(*A);
-  }
-}
-
-bool LaggedCholeskyPreconditioner::same_pattern(const Eigen::SparseMatrix<double>& A) const {
-  return A.rows() == rows_ && A.nonZeros() == nnz_ &&
-         std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, outer_.begin()) &&
-         std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), inner_.begin());
+  const bool pattern_changed = !pattern_.same_or_remember(*A, op.pattern_id());
+  if (pattern_changed) cholmod_->llt.analyzePattern(*A);
+  if (!valid_ || pattern_changed || applications_since_ >= settings_.refresh_cost_factor * refresh_cost_) factorize(*A);
 }
 
 void LaggedCholeskyPreconditioner::factorize(const Eigen::SparseMatrix<double>& A) {

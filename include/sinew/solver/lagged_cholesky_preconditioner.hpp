@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "sinew/linalg/pattern_memo.hpp"
 #include "sinew/solver/preconditioner.hpp"
 
 namespace sinew {
@@ -37,7 +38,6 @@ class LaggedCholeskyPreconditioner final : public Preconditioner {
   int applications_since_factorization() const { return applications_since_; }
 
  private:
-  bool same_pattern(const Eigen::SparseMatrix<double>& A) const;
   void factorize(const Eigen::SparseMatrix<double>& A);
 
   struct Cholmod;
@@ -46,8 +46,7 @@ class LaggedCholeskyPreconditioner final : public Preconditioner {
   bool valid_ = false, exact_ = false;
   int factorizations_ = 0, applications_since_ = 0;
   double refresh_cost_ = 0.0;  // CG iterations that cost about one factorisation
-  Eigen::Index rows_ = -1, nnz_ = -1;
-  std::vector<int> outer_, inner_;
+  PatternMemo pattern_;  // the pattern the factorisation was analysed for
 };
 
 }  // namespace sinew
