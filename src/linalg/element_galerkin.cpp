@@ -140,48 +140,86 @@ void ElementGalerkin::compute(const ElementMatrices& A, std::span<const char> fi
     throw Error("the DOF masks or the coarse matrix do not match the interpolation", "element Galerkin product");
   const VertexInterpolation& P = *P_;
   C.set_zero();
+  // Interpolation weights of the element's free fine DOFs into its coarse set: for vertex a, its
+  // entries (position J in the set, weight), and which of its DOFs are free.
+  struct Weights {
+    int count[kMaxElementMatrixVertices];
+    int J[kMaxElementMatrixVertices][kMaxElementMatrixVertices];
+    double w[kMaxElementMatrixVertices][kMaxElementMatrixVertices];
+    bool free[kMaxElementMatrixVertices][3];
+  };
   struct Scratch {
     ElementMatrix K;
     Eigen::MatrixXd T{3 * kMaxElementMatrixVertices, 3 * kMaxCoarse};  // K P_e
     Eigen::MatrixXd Q{3 * kMaxCoarse, 3 * kMaxCoarse};                // P_e^T K P_e
+    Eigen::Matrix<double, 24, 24> T24, Tt24, Q24;                     // the same, 8 coarse vertices
+    Weights weights;
   };
   tbb::enumerable_thread_specific<Scratch> scratch;
+  auto weights = [&](const int* v, int n, const std::array<int, kMaxCoarse>& set, int m, Weights& W) {
+    for (int a = 0; a < n; ++a) {
+      const size_t va = static_cast<size_t>(v[a]);
+      W.count[a] = P.offsets[va + 1] - P.offsets[va];
+      for (int k = 0; k < W.count[a]; ++k) {
+        const size_t p = static_cast<size_t>(P.offsets[va] + k);
+        W.J[a][k] = static_cast<int>(std::lower_bound(set.begin(), set.begin() + m, P.coarse[p]) - set.begin());
+        W.w[a][k] = P.weight[p];
+      }
+      for (int i = 0; i < 3; ++i) W.free[a][i] = fine_free[3 * va + static_cast<size_t>(i)] != 0;
+    }
+  };
+  auto scatter = [&](const std::array<int, kMaxCoarse>& set, int m, const auto& Q) {
+    for (int I = 0; I < m; ++I)
+      for (int J = 0; J < m; ++J) {
+        const int slot = C.slot(set[static_cast<size_t>(I)], set[static_cast<size_t>(J)]);
+        if (slot < 0) throw Error("the coarse matrix's pattern does not match", "element Galerkin product");
+        C.block(slot) += Q.template block<3, 3>(3 * I, 3 * J);
+      }
+  };
   auto element = [&](Eigen::Index e, Scratch& w) {
     int v[kMaxElementMatrixVertices];
     const int n = A.vertices(e, v);
     std::array<int, kMaxCoarse> set{};
     const int m = coarse_set(P, v, n, set);
     A.matrix(e, w.K);
+    weights(v, n, set, m, w.weights);
+    const Weights& W = w.weights;
+    if (n == kMaxElementMatrixVertices && m == kMaxElementMatrixVertices) {
+      // A hexahedron inside one coarse cell (every element of a 2x coarsened lattice): fixed
+      // sizes. T = K P_e column by column, then Q = P_e^T T = (T^T P_e)^T = T^T P_e (Q is
+      // symmetric) column by column from T^T's columns.
+      Eigen::Matrix<double, 24, 24>& T = w.T24;
+      T.setZero();
+      for (int b = 0; b < 8; ++b)
+        for (int k = 0; k < W.count[b]; ++k)
+          for (int j = 0; j < 3; ++j)
+            if (W.free[b][j]) T.col(3 * W.J[b][k] + j) += W.w[b][k] * w.K.col(3 * b + j);
+      Eigen::Matrix<double, 24, 24>& Tt = w.Tt24;
+      Tt = T.transpose();
+      Eigen::Matrix<double, 24, 24>& Q = w.Q24;
+      Q.setZero();
+      for (int a = 0; a < 8; ++a)
+        for (int k = 0; k < W.count[a]; ++k)
+          for (int i = 0; i < 3; ++i)
+            if (W.free[a][i]) Q.col(3 * W.J[a][k] + i) += W.w[a][k] * Tt.col(3 * a + i);
+      scatter(set, m, Q);
+      return;
+    }
     // T = K P_e: column 3J + j gathers the columns 3b + j of K weighted by w_bJ (free DOFs only).
     auto T = w.T.topLeftCorner(3 * n, 3 * m);
     T.setZero();
-    for (int b = 0; b < n; ++b) {
-      const size_t vb = static_cast<size_t>(v[b]);
-      for (int k = P.offsets[vb]; k < P.offsets[vb + 1]; ++k) {
-        const int J = static_cast<int>(std::lower_bound(set.begin(), set.begin() + m, P.coarse[static_cast<size_t>(k)]) - set.begin());
-        const double wt = P.weight[static_cast<size_t>(k)];
+    for (int b = 0; b < n; ++b)
+      for (int k = 0; k < W.count[b]; ++k)
         for (int j = 0; j < 3; ++j)
-          if (fine_free[3 * vb + static_cast<size_t>(j)]) T.col(3 * J + j) += wt * w.K.col(3 * b + j).head(3 * n);
-      }
-    }
+          if (W.free[b][j]) T.col(3 * W.J[b][k] + j) += W.w[b][k] * w.K.col(3 * b + j).head(3 * n);
     // Q = P_e^T T, row by row.
     auto Q = w.Q.topLeftCorner(3 * m, 3 * m);
     Q.setZero();
-    for (int a = 0; a < n; ++a) {
-      const size_t va = static_cast<size_t>(v[a]);
-      for (int k = P.offsets[va]; k < P.offsets[va + 1]; ++k) {
-        const int I = static_cast<int>(std::lower_bound(set.begin(), set.begin() + m, P.coarse[static_cast<size_t>(k)]) - set.begin());
-        const double wt = P.weight[static_cast<size_t>(k)];
+    for (int a = 0; a < n; ++a)
+      for (int k = 0; k < W.count[a]; ++k)
         for (int i = 0; i < 3; ++i)
-          if (fine_free[3 * va + static_cast<size_t>(i)]) Q.row(3 * I + i) += wt * T.row(3 * a + i);
-      }
-    }
-    for (int I = 0; I < m; ++I)
-      for (int J = 0; J < m; ++J) {
-        const int slot = C.slot(set[static_cast<size_t>(I)], set[static_cast<size_t>(J)]);
-        if (slot < 0) throw Error("the coarse matrix's pattern does not match", "element Galerkin product");
-        C.block(slot) += Q.block<3, 3>(3 * I, 3 * J);
-      }
+          if (W.free[a][i]) Q.row(3 * W.J[a][k] + i) += W.w[a][k] * T.row(3 * a + i);
+    scatter(set, m, Q);
   };
   for (const auto& color : colors_)
     tbb::parallel_for(tbb::blocked_range<size_t>(0, color.size(), 8), [&](const auto& range) {
