@@ -160,6 +160,8 @@ void ElementGalerkin::compute(const ElementMatrices& A, std::span<const char> fi
     for (int a = 0; a < n; ++a) {
       const size_t va = static_cast<size_t>(v[a]);
       W.count[a] = P.offsets[va + 1] - P.offsets[va];
+      if (W.count[a] > kMaxElementMatrixVertices)
+        throw Error("a fine vertex interpolates from more than 8 coarse vertices", "element Galerkin product");
       for (int k = 0; k < W.count[a]; ++k) {
         const size_t p = static_cast<size_t>(P.offsets[va] + k);
         W.J[a][k] = static_cast<int>(std::lower_bound(set.begin(), set.begin() + m, P.coarse[p]) - set.begin());
