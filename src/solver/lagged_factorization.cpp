@@ -196,18 +196,7 @@ bool LaggedFactorization::preconditioned_cg(const Eigen::VectorXd& r, Eigen::Vec
   // serially with four partial sums; larger ones use the parallel SparseOperator.
   const SparseOperator op(*current_);
   const bool small = current_->rows() < reuse_.block_factorization_below && current_->isCompressed();
-  if (small && (pattern_ == 0 || pattern_ != product_pattern_)) {
-    product_pattern_ = pattern_;
-    const bool same = product_outer_.size() == static_cast<size_t>(current_->outerSize() + 1) &&
-                      product_inner_.size() == static_cast<size_t>(current_->nonZeros()) &&
-                      std::equal(product_outer_.begin(), product_outer_.end(), current_->outerIndexPtr()) &&
-                      std::equal(product_inner_.begin(), product_inner_.end(), current_->innerIndexPtr());
-    if (!same) {
-      product_outer_.assign(current_->outerIndexPtr(), current_->outerIndexPtr() + current_->outerSize() + 1);
-      product_inner_.assign(current_->innerIndexPtr(), current_->innerIndexPtr() + current_->nonZeros());
-      vertex_columns_ = vertex_column_starts(*current_);
-    }
-  }
+  if (small && !product_pattern_.same_or_remember(*current_, pattern_)) vertex_columns_ = vertex_column_starts(*current_);
   auto apply = [&](const Eigen::VectorXd& p, Eigen::VectorXd& y) {
     if (small)
       symmetric_product_serial(*current_, vertex_columns_, p, y);

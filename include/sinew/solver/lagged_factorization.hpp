@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "sinew/linalg/pattern_memo.hpp"
+
 namespace sinew {
 
 struct FactorizationReuse {
@@ -108,9 +110,9 @@ class LaggedFactorization {
   std::unordered_map<long, Column> columns_;
   // The pattern CG's serial product was last prepared for, and its columns that start a vertex's
   // triple of columns with equal rows (lagged_factorization.cpp).
-  std::vector<int> product_outer_, product_inner_;
+  PatternMemo product_pattern_;
   std::vector<char> vertex_columns_;
-  std::uint64_t pattern_ = 0, product_pattern_ = 0;  // the current matrix's pattern id, the product's
+  std::uint64_t pattern_ = 0;  // the current matrix's pattern id (0: none)
 };
 
 }  // namespace sinew
