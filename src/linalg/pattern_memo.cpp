@@ -30,4 +30,10 @@ bool PatternMemo::same_or_remember(const Eigen::SparseMatrix<double>& A, std::ui
   return false;
 }
 
+void PatternMemo::forget() {
+  valid_ = false;
+  std::vector<int>().swap(outer_);
+  std::vector<int>().swap(inner_);
+}
+
 }  // namespace sinew

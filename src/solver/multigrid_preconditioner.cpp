@@ -81,9 +81,7 @@ void MultigridPreconditioner::build_hierarchy(const VolumeMesh& mesh) {
     if (l < h.interpolations.size()) level->interpolation = std::move(h.interpolations[l]);
     levels_.push_back(std::move(level));
   }
-  fine_outer_.clear();
-  fine_inner_.clear();
-  fine_pattern_id_ = 0;
+  fine_pattern_.forget();
   coarse_analysed_ = false;
 }
 
@@ -129,34 +127,19 @@ void MultigridPreconditioner::setup(const LinearOperator& A, const SolverContext
   // The operator's pattern id where it has one (a Newton Hessian: no copy of its pattern, ~4
   // bytes per nonzero, and no comparison per setup); else the pattern compared with a copy.
   const std::uint64_t pattern_id = fine == matrix ? A.pattern_id() : 0;
-  const bool same_pattern =
-      elements ? from_elements_ && element_galerkin_.structure_id() == elements->structure_id()
-      : pattern_id != 0
-          ? !from_elements_ && fine_pattern_id_ == pattern_id
-          : !from_elements_ && fine_pattern_id_ == 0 && static_cast<Eigen::Index>(fine_outer_.size()) == fine->outerSize() + 1 &&
-                static_cast<Eigen::Index>(fine_inner_.size()) == fine->nonZeros() &&
-                std::equal(fine_outer_.begin(), fine_outer_.end(), fine->outerIndexPtr()) &&
-                std::equal(fine_inner_.begin(), fine_inner_.end(), fine->innerIndexPtr());
+  const bool same_pattern = elements ? from_elements_ && element_galerkin_.structure_id() == elements->structure_id()
+                                     : fine_pattern_.same_or_remember(*fine, pattern_id) && !from_elements_;
   if (!same_pattern) {
     std::vector<std::vector<int>> pattern;
     size_t first = 0;
-    fine_outer_.clear();
-    fine_inner_.clear();
-    fine_outer_.shrink_to_fit();
-    fine_inner_.shrink_to_fit();
-    fine_pattern_id_ = 0;
     if (elements) {
+      fine_pattern_.forget();
       element_galerkin_ = ElementGalerkin(*elements, levels_[0]->interpolation);
       levels_[1]->coarse_matrix = element_galerkin_.make_coarse();
       pattern = block_pattern(levels_[1]->coarse_matrix);
       first = 1;
     } else {
       pattern = block_pattern(*fine);
-      fine_pattern_id_ = pattern_id;
-      if (pattern_id == 0) {
-        fine_outer_.assign(fine->outerIndexPtr(), fine->outerIndexPtr() + fine->outerSize() + 1);
-        fine_inner_.assign(fine->innerIndexPtr(), fine->innerIndexPtr() + fine->nonZeros());
-      }
     }
     for (size_t l = first; l + 1 < levels_.size(); ++l) {
       Level& L = *levels_[l];

@@ -14,6 +14,8 @@ class PatternMemo {
   // True when A (whose operator reports `id`, 0 for none) has the pattern remembered last;
   // otherwise remembers A's pattern and returns false.
   bool same_or_remember(const Eigen::SparseMatrix<double>& A, std::uint64_t id);
+  // Nothing remembered (and no copy kept): the next call answers false.
+  void forget();
   // Bytes kept for the comparison (none while ids answer).
   std::size_t bytes() const { return (outer_.capacity() + inner_.capacity()) * sizeof(int); }
 

@@ -20,6 +20,7 @@
 #include "sinew/linalg/block_sparse_matrix.hpp"
 #include "sinew/linalg/element_galerkin.hpp"
 #include "sinew/linalg/galerkin_product.hpp"
+#include "sinew/linalg/pattern_memo.hpp"
 #include "sinew/solver/chebyshev_smoother.hpp"
 #include "sinew/solver/diagonal_preconditioners.hpp"
 #include "sinew/solver/lattice_hierarchy.hpp"
@@ -54,9 +55,9 @@ class MultigridPreconditioner final : public Preconditioner {
   const void* lattice_ = nullptr;  // the discretisation the hierarchy was built for
   std::shared_ptr<const void> keep_;  // keeps that discretisation alive
   std::vector<std::unique_ptr<Level>> levels_;
-  // The fine pattern the Galerkin products are for: its id where the operator has one, else a copy.
-  std::uint64_t fine_pattern_id_ = 0;
-  std::vector<int> fine_outer_, fine_inner_;
+  // The assembled fine pattern the Galerkin products are for: its id where the operator has one,
+  // else a copy.
+  PatternMemo fine_pattern_;
   ElementGalerkin element_galerkin_;          // level 1 from a matrix-free operator's elements
   bool from_elements_ = false;                // the symbolic products are for element matrices
   bool fallback_only_ = false;                // element matrices on a single level: block-Jacobi
