@@ -2,6 +2,7 @@
 // the targets frozen, detection, and two blocks pushed into each other.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -88,6 +89,54 @@ TEST(SelfContactDetection, PenetratingSamplesGetTargetsOnTheOtherBlocksSurface) 
     EXPECT_NEAR(c.depth, (xs - c.target).norm(), 1e-14);
     EXPECT_LE(c.depth, overlap + 1e-12);
   }
+}
+
+// add_at_iterate (after each accepted Newton step): nothing before the first contact (a solve's
+// first iterates are distorted near the bones); once contacts exist, newly penetrating samples are
+// added and the known ones keep their triangle, weights and normal; samples that left the body
+// are not dropped (only refresh drops, at converged states).
+TEST(SelfContactForm, AddsSamplesAtIteratesOnlyOnceContactsExist) {
+  const VolumeMesh m = two_blocks(0.0, 3);
+  SelfContactForm form(m, SelfContactSettings{});
+  const Eigen::VectorXd full = shifted(m, -0.05);
+  // Only the lower half of block b (rest y < 0.5) pushed into a.
+  Eigen::VectorXd partial = m.rest_positions();
+  for (Eigen::Index v = 0; v < m.num_vertices(); ++v)
+    if (in_b(m, v) && m.vertices(v, 1) < 0.5) partial(3 * v) -= 0.05;
+  EXPECT_FALSE(form.add_at_iterate(full));
+  EXPECT_TRUE(form.contacts().empty());
+  ASSERT_TRUE(form.refresh(partial));
+  const std::vector<SurfaceContact> first = form.contacts();
+  ASSERT_FALSE(first.empty());
+  const size_t all = form.detect(full).size();
+  ASSERT_GT(all, first.size());
+  EXPECT_TRUE(form.add_at_iterate(full));
+  EXPECT_TRUE(form.couplings_changed());
+  EXPECT_EQ(form.contacts().size(), all);
+  for (const SurfaceContact& c : first) {
+    const auto it = std::find_if(form.contacts().begin(), form.contacts().end(),
+                                 [&](const SurfaceContact& k) { return k.sample == c.sample; });
+    ASSERT_NE(it, form.contacts().end()) << c.sample;
+    EXPECT_EQ(it->triangle, c.triangle);
+    EXPECT_EQ(it->weights, c.weights);
+    EXPECT_EQ(it->normal, c.normal);
+  }
+  EXPECT_FALSE(form.add_at_iterate(full));  // nothing new
+  EXPECT_FALSE(form.couplings_changed());
+  EXPECT_FALSE(form.add_at_iterate(m.rest_positions()));  // all outside: none dropped here
+  EXPECT_EQ(form.contacts().size(), all);
+
+  // Samples deep inside at an iterate wait for the converged state (refresh adds them).
+  SelfContactForm deep(m, SelfContactSettings{});
+  ASSERT_TRUE(deep.refresh(partial));
+  const size_t before = deep.contacts().size();
+  const Eigen::VectorXd far = shifted(m, -0.4);
+  deep.add_at_iterate(far);
+  EXPECT_LT(deep.contacts().size(), deep.detect(far).size());
+  for (const SurfaceContact& c : deep.contacts()) EXPECT_LE(c.depth, 0.4 - 0.05) << c.sample;  // none 0.4 deep added
+  EXPECT_GE(deep.contacts().size(), before);
+  EXPECT_TRUE(deep.refresh(far));
+  EXPECT_GE(deep.contacts().size(), deep.detect(far).size());
 }
 
 // surface_depth: how far a penetrating sample is from the nearest deformed surface outside its

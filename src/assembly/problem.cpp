@@ -93,6 +93,16 @@ bool Problem::is_valid(const Eigen::VectorXd& x) const {
 
 bool Problem::refresh(const Eigen::VectorXd& x) { return refresh_forms(x, false); }
 
+bool Problem::add_at_iterate(const Eigen::VectorXd& x) {
+  bool changed = false, repattern = false;
+  for (const auto& f : forms_) {
+    changed = f->add_at_iterate(x) || changed;
+    repattern = repattern || f->couplings_changed();
+  }
+  if (repattern) hessian_.reset();
+  return changed;
+}
+
 bool Problem::begin_solve(const Eigen::VectorXd& x) { return refresh_forms(x, true); }
 
 bool Problem::refresh_forms(const Eigen::VectorXd& x, bool start_of_solve) {

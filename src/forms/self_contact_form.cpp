@@ -336,6 +336,31 @@ bool SelfContactForm::refresh(const Eigen::VectorXd& x) {
   return added;
 }
 
+// Samples found deeper than this many grid cells (cell_: 1.5 mean boundary edges) at an iterate
+// are left to the next converged state: at an iterate they are mostly transient (distorted flesh
+// next to a bone that just moved) and would get a far target; the ones worth catching early are
+// shallow.
+constexpr double kIterateDepth = 1.0 / 6.0;
+
+bool SelfContactForm::add_at_iterate(const Eigen::VectorXd& x) {
+  // Not before the first contact: the iterates of a solve's start are distorted where the bones
+  // jumped, and samples there would be false contacts.
+  couplings_changed_ = false;
+  if (contacts_.empty()) return false;
+  std::vector<char> known(rest_.rows(), 0);
+  for (const auto& c : contacts_) known[c.sample] = 1;
+  bool added = false;
+  for (SurfaceContact& c : detect(x))
+    if (!known[c.sample] && c.depth <= kIterateDepth * cell_) {
+      contacts_.push_back(std::move(c));
+      added = true;
+    }
+  if (!added) return false;
+  couplings_changed_ = true;
+  std::sort(contacts_.begin(), contacts_.end(), [](const SurfaceContact& a, const SurfaceContact& b) { return a.sample < b.sample; });
+  return true;
+}
+
 double SelfContactForm::value(const Eigen::VectorXd& x) const {
   double e = 0.0;
   for (const auto& c : contacts_) {

@@ -101,8 +101,8 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
     report.force_scale = check.force_scale(state_scale);
     report.step_norm = std::max(step_norm, 0.0);
     if (check.passed(residual, state_scale, x, step_norm)) {
-      // Lagged terms (contacts) are updated only at a converged state, never at the distorted
-      // iterates on the way there, and Newton goes on if they changed the energy.
+      // Lagged terms (contacts) are refreshed (refitted, dropped) only at a converged state, never
+      // at the distorted iterates on the way there, and Newton goes on if they changed the energy.
       t0 = std::chrono::steady_clock::now();
       const bool changed = problem.refresh(x);
       if (changed) {
@@ -189,6 +189,7 @@ NewtonReport newton_solve(Problem& problem, Eigen::VectorXd& x, LinearSolver& li
     // Newton step.
     step_norm = newton_direction ? d.norm() : std::numeric_limits<double>::infinity();
     t0 = std::chrono::steady_clock::now();
+    if (problem.add_at_iterate(x)) energy = problem.value(x);  // terms added (self-contact samples)
     g = problem.gradient(x, state_scale);
     report.assembly_seconds += seconds_since(t0);
     residual = g.norm();

@@ -74,6 +74,8 @@ class Problem {
   std::size_t hessian_bytes() const;
   // Form::refresh on every form; true if any energy changed.
   bool refresh(const Eigen::VectorXd& x);
+  // Form::add_at_iterate on every form (after an accepted Newton step); true if any energy changed.
+  bool add_at_iterate(const Eigen::VectorXd& x);
   // Form::begin_solve on every form (a Newton solve's first iteration); true if any energy changed.
   bool begin_solve(const Eigen::VectorXd& x);
 

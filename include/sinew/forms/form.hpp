@@ -58,6 +58,9 @@ class Form {
   // ends. Both return true if the energy changed.
   virtual bool begin_solve(const Eigen::VectorXd& /*x*/) { return false; }
   virtual bool refresh(const Eigen::VectorXd& /*x*/) { return false; }
+  // Called after every accepted Newton step. A form may add terms here, never remove or refit
+  // them (so the energy changes finitely often per solve), and returns true if it did.
+  virtual bool add_at_iterate(const Eigen::VectorXd& /*x*/) { return false; }
   // Called at every linearisation point (Problem::hessian, once per Newton iterate, before the
   // Hessian is assembled). A form whose force has no potential (a follower pressure on an open
   // surface) restarts there the path along which its energy, minus the work of its force, is

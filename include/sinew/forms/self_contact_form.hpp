@@ -17,10 +17,15 @@
 // rest boundary area (so k is a pressure per unit penetration depth, Pa/m, independent of the
 // resolution) and n_s the outward unit surface normal at the target (vertex normals interpolated): a one-sided frictionless
 // spring along the normal (C1; zero once the sample is back outside).
-// New samples are added at converged states only and existing contacts keep their triangle,
+// New samples are added at converged states and existing contacts keep their triangle,
 // weights and normal, so Newton minimises one fixed energy between finitely many additions
 // (re-fitting every contact at every iteration made the residual stall) and never detects at
-// the distorted iterates of a solve's start. Contacts more than a quarter grid cell outside
+// the distorted iterates of a solve's start. Once contacts exist, samples that enter the body
+// are also added after every accepted Newton step if they are still shallow (add_at_iterate;
+// additions only): the new springs push their samples out and drag neighbours in, and a
+// neighbour caught only at the next converged state had gone deep enough to be mapped to the far
+// surface and pushed through (the coarse elbow's crease ended 33 mm deep on one of ten
+// rounding-level perturbations; the h = 10 mm crease at nu = 0.45 15-30 mm deep). Contacts more than a quarter grid cell outside
 // are dropped; at each solve's start (Form::begin_solve) the carried contacts still inside the
 // body are refitted. (A spring on the full vector x_s - t_s also pulls tangentially wherever
 // the two linear maps miss the deformed closest point, so only the normal part is used.)
@@ -88,6 +93,9 @@ class SelfContactForm final : public Form {
   // At a converged state: newly penetrating samples are added (true if any), separated
   // contacts dropped; the others are unchanged.
   bool refresh(const Eigen::VectorXd& x) override;
+  // After an accepted Newton step, when contacts exist: newly penetrating samples at most a sixth
+  // of a grid cell deep are added (deeper ones wait for the converged state).
+  bool add_at_iterate(const Eigen::VectorXd& x) override;
   bool couplings_changed() const override { return couplings_changed_; }
   const std::vector<SurfaceContact>& contacts() const { return contacts_; }
 
