@@ -25,9 +25,9 @@
 // additions only): the new springs push their samples out and drag neighbours in, and a
 // neighbour caught only at the next converged state had gone deep enough to be mapped to the far
 // surface and pushed through (the coarse elbow's crease ended 33 mm deep on one of ten
-// rounding-level perturbations; the h = 10 mm crease at nu = 0.45 15-30 mm deep). Contacts more than a quarter grid cell outside
-// are dropped; at each solve's start (Form::begin_solve) the carried contacts still inside the
-// body are refitted. (A spring on the full vector x_s - t_s also pulls tangentially wherever
+// rounding-level perturbations; the h = 10 mm crease at nu = 0.45 15-30 mm deep). Contacts more
+// than a quarter grid cell outside are dropped; at each solve's start (Form::begin_solve) the
+// carried contacts still inside the body are refitted. (A spring on the full vector x_s - t_s also pulls tangentially wherever
 // the two linear maps miss the deformed closest point, so only the normal part is used.)
 // The target moves with its triangle's vertices, so the spring pushes both sides apart (action
 // and reaction); E is convex with PSD Hessian k A_s [1, -w]^T [1, -w] (x) n n^T on penetrating
