@@ -97,14 +97,6 @@ void ElasticForm::add_gradient_fixed(const Eigen::VectorXd& x, Eigen::VectorXd& 
       for (Eigen::Index e = runs[run].first; e != runs[run].end; ++e) {
         const auto xe = positions<N>(d, e, x);
         Eigen::Matrix<double, 3, N> ge = Eigen::Matrix<double, 3, N>::Zero(3, d.nodes());
-        if constexpr (N == 8) {
-          HexGradientLanes scratch;
-          const HexGradientLanes* lanes = hex_lanes(e, scratch);
-          if (lanes && add_hex_invariant_gradient(*invariant_, *lanes, xe, ge)) {
-            for (int a = 0; a < 8; ++a) g.segment<3>(3 * elements(e, a)) += ge.col(a);
-            continue;
-          }
-        }
         if (add_invariant_gradient<N>(e, xe, ge)) {
           for (int a = 0; a < d.nodes(); ++a) g.segment<3>(3 * elements(e, a)) += ge.col(a);
           continue;

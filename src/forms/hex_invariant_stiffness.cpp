@@ -245,57 +245,6 @@ bool hex_stiffness_kernel(const InvariantMaterial& material, Projection mode, co
 
 }  // namespace
 
-bool add_hex_invariant_gradient(const InvariantMaterial& material, const HexGradientLanes& D,
-                                const fixed_element::Positions<8>& xe, Eigen::Matrix<double, 3, 8>& ge) {
-  // F = x_e D per point, column-major (F[i + 3k][q]), and cof F (paper 000 Eq. 19) as in the
-  // stiffness kernel.
-  alignas(64) double F[9][Q] = {};
-  for (int a = 0; a < 8; ++a)
-    for (int k = 0; k < 3; ++k)
-      for (int i = 0; i < 3; ++i) {
-        const double x = xe(i, a);
-#pragma omp simd
-        for (int q = 0; q < Q; ++q) F[i + 3 * k][q] += x * D.point_lanes[a][k][q];
-      }
-  alignas(64) double G[9][Q], Ic[Q], J[Q];
-#pragma omp simd
-  for (int q = 0; q < Q; ++q) {
-    for (int c = 0; c < 3; ++c) {
-      const int c1 = 3 * ((c + 1) % 3), c2 = 3 * ((c + 2) % 3);
-      G[3 * c][q] = F[c1 + 1][q] * F[c2 + 2][q] - F[c1 + 2][q] * F[c2 + 1][q];
-      G[3 * c + 1][q] = F[c1 + 2][q] * F[c2][q] - F[c1][q] * F[c2 + 2][q];
-      G[3 * c + 2][q] = F[c1][q] * F[c2 + 1][q] - F[c1 + 1][q] * F[c2][q];
-    }
-    J[q] = F[0][q] * G[0][q] + F[1][q] * G[1][q] + F[2][q] * G[2][q];
-    double s = 0.0;
-    for (int m = 0; m < 9; ++m) s += F[m][q] * F[m][q];
-    Ic[q] = s;
-  }
-  const bool positive_j = material.domain() == Domain::PositiveJ;
-  for (int q = 0; q < Q; ++q)
-    if (!std::isfinite(Ic[q]) || !std::isfinite(J[q]) || (positive_j && !(J[q] > 0.0))) return false;
-  InvariantMaterial::Derivatives derivatives[Q];
-  material.curvature_derivatives_at(Q, Ic, J, derivatives);
-  // Weighted P per point: w_q (2 Psi_I F + Psi_J cof F).
-  alignas(64) double P[9][Q];
-  for (int q = 0; q < Q; ++q) {
-    const double s = 2.0 * derivatives[q].dI * D.weight[q], t = derivatives[q].dJ * D.weight[q];
-    for (int m = 0; m < 9; ++m) P[m][q] = s * F[m][q] + t * G[m][q];
-  }
-  // g_a(i) = sum_q sum_k P_q(i, k) dN_a/dX_k(q), the nodes in lanes.
-  alignas(64) double g[3][8] = {};
-  for (int q = 0; q < Q; ++q)
-    for (int k = 0; k < 3; ++k)
-      for (int i = 0; i < 3; ++i) {
-        const double p = P[i + 3 * k][q];
-#pragma omp simd
-        for (int a = 0; a < 8; ++a) g[i][a] += p * D.node_lanes[q][k][a];
-      }
-  for (int a = 0; a < 8; ++a)
-    for (int i = 0; i < 3; ++i) ge(i, a) += g[i][a];
-  return true;
-}
-
 bool add_hex_invariant_stiffness(const InvariantMaterial& material, Projection mode, const HexGradientLanes& D,
                                  const fixed_element::Positions<8>& xe, fixed_element::SymmetricBlocks<8>& K) {
   const HexGradientLanes* d[1] = {&D};

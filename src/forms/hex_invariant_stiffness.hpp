@@ -31,13 +31,6 @@ HexGradientLanes hex_gradient_lanes(const Discretization& d, Eigen::Index e);
 bool add_hex_invariant_stiffness(const InvariantMaterial& material, Projection mode, const HexGradientLanes& D,
                                  const fixed_element::Positions<8>& xe, fixed_element::SymmetricBlocks<8>& K);
 
-// ge(i, a) += the element's gradient sum_q w_q P_q dN_a/dX (P = 2 Psi_I F + Psi_J cof F) with
-// the points in lanes for F and P and the nodes in lanes for the sum. Equal to the per-point
-// Material::pk1 path to rounding, not bit for bit. Returns false, with ge unchanged, on a point
-// whose F is not finite or outside the material's domain (the caller's generic path reports it).
-bool add_hex_invariant_gradient(const InvariantMaterial& material, const HexGradientLanes& D,
-                                const fixed_element::Positions<8>& xe, Eigen::Matrix<double, 3, 8>& ge);
-
 // The same for two elements in one call (16 lanes in the point stages, so one element's
 // latency-bound SVD sweeps overlap the other's); each K is bitwise what the single call gives.
 // Returns false, with both K unchanged, when either element has a bad point.
