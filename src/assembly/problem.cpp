@@ -91,25 +91,17 @@ bool Problem::is_valid(const Eigen::VectorXd& x) const {
   return true;
 }
 
-bool Problem::refresh(const Eigen::VectorXd& x) { return refresh_forms(x, false); }
+bool Problem::refresh(const Eigen::VectorXd& x) { return refresh_forms(x, &Form::refresh); }
 
-bool Problem::add_at_iterate(const Eigen::VectorXd& x) {
-  bool changed = false, repattern = false;
-  for (const auto& f : forms_) {
-    changed = f->add_at_iterate(x) || changed;
-    repattern = repattern || f->couplings_changed();
-  }
-  if (repattern) hessian_.reset();
-  return changed;
-}
+bool Problem::add_at_iterate(const Eigen::VectorXd& x) { return refresh_forms(x, &Form::add_at_iterate); }
 
-bool Problem::begin_solve(const Eigen::VectorXd& x) { return refresh_forms(x, true); }
+bool Problem::begin_solve(const Eigen::VectorXd& x) { return refresh_forms(x, &Form::begin_solve); }
 
-bool Problem::refresh_forms(const Eigen::VectorXd& x, bool start_of_solve) {
+bool Problem::refresh_forms(const Eigen::VectorXd& x, bool (Form::*hook)(const Eigen::VectorXd&)) {
   bool changed = false;
   bool repattern = false;
   for (const auto& f : forms_) {
-    changed = (start_of_solve ? f->begin_solve(x) : f->refresh(x)) || changed;
+    changed = ((*f).*hook)(x) || changed;
     repattern = repattern || f->couplings_changed();
   }
   if (repattern) hessian_.reset();

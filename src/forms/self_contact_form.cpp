@@ -324,15 +324,22 @@ bool SelfContactForm::refresh(const Eigen::VectorXd& x) {
     if (gap <= 0.25 * cell_) next.push_back(c);
   }
   const bool removed = next.size() != contacts_.size();
+  const bool added = add_new_samples(x, known, std::numeric_limits<double>::infinity(), next);
+  couplings_changed_ = added || removed;
+  contacts_ = std::move(next);
+  return added;
+}
+
+bool SelfContactForm::add_new_samples(const Eigen::VectorXd& x, const std::vector<char>& known, double max_depth,
+                                      std::vector<SurfaceContact>& contacts) const {
   bool added = false;
   for (SurfaceContact& c : detect(x))
-    if (!known[c.sample]) {
-      next.push_back(std::move(c));
+    if (!known[c.sample] && c.depth <= max_depth) {
+      contacts.push_back(std::move(c));
       added = true;
     }
-  couplings_changed_ = added || removed;
-  std::sort(next.begin(), next.end(), [](const SurfaceContact& a, const SurfaceContact& b) { return a.sample < b.sample; });
-  contacts_ = std::move(next);
+  if (added)
+    std::sort(contacts.begin(), contacts.end(), [](const SurfaceContact& a, const SurfaceContact& b) { return a.sample < b.sample; });
   return added;
 }
 
@@ -349,16 +356,8 @@ bool SelfContactForm::add_at_iterate(const Eigen::VectorXd& x) {
   if (contacts_.empty()) return false;
   std::vector<char> known(rest_.rows(), 0);
   for (const auto& c : contacts_) known[c.sample] = 1;
-  bool added = false;
-  for (SurfaceContact& c : detect(x))
-    if (!known[c.sample] && c.depth <= kIterateDepth * cell_) {
-      contacts_.push_back(std::move(c));
-      added = true;
-    }
-  if (!added) return false;
-  couplings_changed_ = true;
-  std::sort(contacts_.begin(), contacts_.end(), [](const SurfaceContact& a, const SurfaceContact& b) { return a.sample < b.sample; });
-  return true;
+  couplings_changed_ = add_new_samples(x, known, kIterateDepth * cell_, contacts_);
+  return couplings_changed_;
 }
 
 double SelfContactForm::value(const Eigen::VectorXd& x) const {

@@ -81,7 +81,8 @@ class Problem {
 
  private:
   void ensure_pattern();
-  bool refresh_forms(const Eigen::VectorXd& x, bool start_of_solve);
+  // One of Form's lagged-state hooks on every form; the Hessian pattern is rebuilt if couplings changed.
+  bool refresh_forms(const Eigen::VectorXd& x, bool (Form::*hook)(const Eigen::VectorXd&));
   Eigen::Index num_vertices_;
   std::vector<std::shared_ptr<Form>> forms_;
   std::vector<char> fixed_;

@@ -121,6 +121,10 @@ class SelfContactForm final : public Form {
   Eigen::MatrixX3d vertex_normals(const Eigen::VectorXd& x) const;
   Eigen::Vector3d surface_normal(const Eigen::VectorXd& x, const Eigen::MatrixX3d& normals, const SurfaceContact& c) const;
   bool triangle_has(int triangle, int vertex) const;
+  // Appends the samples detected inside the body at x that are not `known` and at most
+  // max_depth deep, keeping `contacts` sorted by sample; true if any.
+  bool add_new_samples(const Eigen::VectorXd& x, const std::vector<char>& known, double max_depth,
+                       std::vector<SurfaceContact>& contacts) const;
 
   SelfContactSettings settings_;
   Eigen::MatrixX3d rest_;
